@@ -1,0 +1,73 @@
+#pragma once
+// A scalar cell field on a Grid, padded with ghost layers on every side so that
+// stencils near the edges need no branches. Storage is one contiguous
+// std::vector, row-major (x fastest), so row sweeps vectorise.
+#include <algorithm>
+#include <cassert>
+#include <cstddef>
+#include <vector>
+
+namespace avalanche {
+
+class Field2D {
+public:
+    Field2D() = default;
+    Field2D(int nx, int ny, int ghosts, double value = 0.0)
+        : nx_(nx), ny_(ny), ng_(ghosts), stride_(nx + 2 * ghosts),
+          data_(static_cast<std::size_t>(nx + 2 * ghosts) * (ny + 2 * ghosts), value) {}
+
+    [[nodiscard]] int nx() const { return nx_; }
+    [[nodiscard]] int ny() const { return ny_; }
+    [[nodiscard]] int ghosts() const { return ng_; }
+    [[nodiscard]] int stride() const { return stride_; }
+    [[nodiscard]] bool empty() const { return data_.empty(); }
+
+    // Linear index of cell (i, j); i in [-ng, nx+ng), j in [-ng, ny+ng).
+    [[nodiscard]] std::ptrdiff_t index(int i, int j) const {
+        assert(i >= -ng_ && i < nx_ + ng_ && j >= -ng_ && j < ny_ + ng_);
+        return static_cast<std::ptrdiff_t>(j + ng_) * stride_ + (i + ng_);
+    }
+    double& operator()(int i, int j) { return data_[index(i, j)]; }
+    double operator()(int i, int j) const { return data_[index(i, j)]; }
+    double* row(int j) { return data_.data() + index(0, j); }
+    [[nodiscard]] const double* row(int j) const { return data_.data() + index(0, j); }
+
+    void fill(double v) { std::fill(data_.begin(), data_.end(), v); }
+    std::vector<double>& raw() { return data_; }
+    [[nodiscard]] const std::vector<double>& raw() const { return data_; }
+
+    // Interior values as a dense nx*ny row-major vector (j = 0 first).
+    [[nodiscard]] std::vector<double> interior() const {
+        std::vector<double> out(static_cast<std::size_t>(nx_) * ny_);
+        for (int j = 0; j < ny_; ++j)
+            std::copy(row(j), row(j) + nx_, out.begin() + static_cast<std::ptrdiff_t>(j) * nx_);
+        return out;
+    }
+    void set_interior(const std::vector<double>& values) {
+        assert(values.size() == static_cast<std::size_t>(nx_) * ny_);
+        for (int j = 0; j < ny_; ++j)
+            std::copy(values.begin() + static_cast<std::ptrdiff_t>(j) * nx_,
+                      values.begin() + static_cast<std::ptrdiff_t>(j + 1) * nx_, row(j));
+    }
+    // Copies the nearest interior value into every ghost cell (zero gradient).
+    void extend_to_ghosts() {
+        for (int j = 0; j < ny_; ++j) {
+            for (int g = 1; g <= ng_; ++g) {
+                (*this)(-g, j) = (*this)(0, j);
+                (*this)(nx_ - 1 + g, j) = (*this)(nx_ - 1, j);
+            }
+        }
+        for (int g = 1; g <= ng_; ++g) {
+            for (int i = -ng_; i < nx_ + ng_; ++i) {
+                (*this)(i, -g) = (*this)(i, 0);
+                (*this)(i, ny_ - 1 + g) = (*this)(i, ny_ - 1);
+            }
+        }
+    }
+
+private:
+    int nx_ = 0, ny_ = 0, ng_ = 0, stride_ = 0;
+    std::vector<double> data_;
+};
+
+}  // namespace avalanche

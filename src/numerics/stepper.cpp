@@ -1,0 +1,569 @@
+#include "avalanche/numerics/stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "avalanche/numerics/limiters.hpp"
+#include "avalanche/numerics/riemann_hllc.hpp"
+
+namespace avalanche {
+
+namespace {
+constexpr double kNoBound = std::numeric_limits<double>::max();
+}
+
+Stepper::Stepper(const Grid& grid, const TerrainFields& terrain, const MaterialParams& material,
+                 const NumericsParams& numerics, double h_min)
+    : grid_(grid),
+      terrain_(terrain),
+      material_(material),
+      numerics_(numerics),
+      k_(earth_pressure_coefficients(material)),
+      tan_delta_(material.tan_delta()),
+      h_min_(h_min),
+      cx_(grid.nx, grid.ny, kGhostLayers),
+      cy_(grid.nx, grid.ny, kGhostLayers),
+      pred_x_(grid),
+      pred_y_(grid),
+      flux_x_(grid),
+      flux_y_(grid),
+      donor_factor_(grid.nx, grid.ny, kGhostLayers, 1.0),
+      u_lo_(grid.nx, grid.ny, kGhostLayers, kNoBound),
+      u_hi_(grid.nx, grid.ny, kGhostLayers, -kNoBound),
+      v_lo_(grid.nx, grid.ny, kGhostLayers, kNoBound),
+      v_hi_(grid.nx, grid.ny, kGhostLayers, -kNoBound) {}
+
+// ---------------------------------------------------------------- active box
+
+void Stepper::shrink_box_to_wet(const State& s, const ActiveBox& search) {
+    ActiveBox wet{grid_.nx, -1, grid_.ny, -1};
+    for (int j = search.j0; j < search.j1; ++j) {
+        const double* h = s.h.row(j);
+        int first = -1, last = -1;
+        for (int i = search.i0; i < search.i1; ++i) {
+            if (h[i] > 0.0) {
+                if (first < 0) first = i;
+                last = i;
+            }
+        }
+        if (first >= 0) {
+            wet.i0 = std::min(wet.i0, first);
+            wet.i1 = std::max(wet.i1, last + 1);
+            wet.j0 = std::min(wet.j0, j);
+            wet.j1 = std::max(wet.j1, j + 1);
+        }
+    }
+    if (wet.i1 < 0) wet = ActiveBox{0, 0, 0, 0};
+    wet_box_ = wet;
+    box_ = wet.widened(numerics_.active_margin, grid_.nx, grid_.ny);
+}
+
+void Stepper::reset_active_box(const State& s) {
+    shrink_box_to_wet(s, ActiveBox{0, grid_.nx, 0, grid_.ny});
+}
+
+// ---------------------------------------------------------------- boundaries
+
+void Stepper::fill_ghosts(State& s) const {
+    const bool wall = numerics_.boundary == Boundary::wall;
+    const int nx = grid_.nx, ny = grid_.ny;
+    // Open: zero-gradient copy (inflow is removed at the faces afterwards).
+    // Wall: mirror image with the normal momentum reversed.
+    for (int j = 0; j < ny; ++j) {
+        for (int g = 1; g <= kGhostLayers; ++g) {
+            const int w = wall ? g - 1 : 0, e = wall ? nx - g : nx - 1;
+            s.h(-g, j) = s.h(w, j);
+            s.hu(-g, j) = wall ? -s.hu(w, j) : s.hu(w, j);
+            s.hv(-g, j) = s.hv(w, j);
+            s.h(nx - 1 + g, j) = s.h(e, j);
+            s.hu(nx - 1 + g, j) = wall ? -s.hu(e, j) : s.hu(e, j);
+            s.hv(nx - 1 + g, j) = s.hv(e, j);
+        }
+    }
+    for (int g = 1; g <= kGhostLayers; ++g) {
+        const int so = wall ? g - 1 : 0, no = wall ? ny - g : ny - 1;
+        for (int i = -kGhostLayers; i < nx + kGhostLayers; ++i) {
+            s.h(i, -g) = s.h(i, so);
+            s.hu(i, -g) = s.hu(i, so);
+            s.hv(i, -g) = wall ? -s.hv(i, so) : s.hv(i, so);
+            s.h(i, ny - 1 + g) = s.h(i, no);
+            s.hu(i, ny - 1 + g) = s.hu(i, no);
+            s.hv(i, ny - 1 + g) = wall ? -s.hv(i, no) : s.hv(i, no);
+        }
+    }
+}
+
+// ---------------------------------------------------------------- time step
+
+double Stepper::stable_dt(const State& s) const {
+    // Conservative celerity: the larger of the active and passive coefficients.
+    const double kx = std::max(k_.kx_active, k_.kx_passive);
+    const double ky = std::max({k_.ky_given_kx_active_active, k_.ky_given_kx_active_passive,
+                                k_.ky_given_kx_passive_active, k_.ky_given_kx_passive_passive});
+    double rate = 0.0;  // max over cells of (|u| + a_x)/dx and (|v| + a_y)/dy
+    const ActiveBox b = box_;
+#pragma omp parallel for reduction(max : rate) schedule(static)
+    for (int j = b.j0; j < b.j1; ++j) {
+        const double* h = s.h.row(j);
+        const double* hu = s.hu.row(j);
+        const double* hv = s.hv.row(j);
+        const double* px = terrain_.px.row(j);
+        const double* py = terrain_.py.row(j);
+        for (int i = b.i0; i < b.i1; ++i) {
+            if (h[i] < h_min_ || h[i] <= 0.0) continue;
+            const double u = hu[i] / h[i], v = hv[i] / h[i];
+            const double rx = (std::abs(u) + std::sqrt(kx * px[i] * h[i])) / grid_.dx;
+            const double ry = (std::abs(v) + std::sqrt(ky * py[i] * h[i])) / grid_.dy;
+            rate = std::max(rate, std::max(rx, ry));
+        }
+    }
+    return rate > 0.0 ? numerics_.cfl / rate : std::numeric_limits<double>::infinity();
+}
+
+void Stepper::step(State& s, double dt) {
+    // The wet area can grow by at most two cells per step; search a little beyond it.
+    const ActiveBox search =
+        wet_box_.empty() ? ActiveBox{0, grid_.nx, 0, grid_.ny} : wet_box_.widened(3, grid_.nx, grid_.ny);
+    shrink_box_to_wet(s, search);
+    if (box_.empty()) return;
+    if (numerics_.splitting == Splitting::lsl) {
+        advect(s, 0.5 * dt);
+        apply_sources(s, dt);
+        advect(s, 0.5 * dt);
+    } else {
+        apply_sources(s, 0.5 * dt);
+        advect(s, dt);
+        apply_sources(s, 0.5 * dt);
+    }
+    cell_updates_ += box_.cells();
+}
+
+// ---------------------------------------------------------------- advection L(tau)
+
+void Stepper::update_pressure_coefficients(const State& s) {
+    const bool isotropic = material_.earth_pressure == EarthPressureModel::isotropic;
+    const int ng = kGhostLayers;
+    const int ia = std::max(box_.i0 - ng, -ng), ib = std::min(box_.i1 + ng, grid_.nx + ng);
+    const int ja = std::max(box_.j0 - ng, -ng), jb = std::min(box_.j1 + ng, grid_.ny + ng);
+    const double hmin = h_min_;
+    const auto vel = [hmin](const Field2D& h, const Field2D& q, int i, int j) {
+        const double hh = h(i, j);
+        return hh >= hmin && hh > 0.0 ? q(i, j) / hh : 0.0;
+    };
+#pragma omp parallel for schedule(static)
+    for (int j = ja; j < jb; ++j) {
+        for (int i = ia; i < ib; ++i) {
+            const double h = s.h(i, j);
+            const bool wet = h >= hmin && h > 0.0;
+            if (isotropic) {
+                cx_(i, j) = terrain_.px(i, j);
+                cy_(i, j) = terrain_.py(i, j);
+            } else {
+            // Active where the flow extends (du/dx > 0), passive where it compresses
+            // (Wang & Li 2017 after eq. 3); central differences, clamped at the padding.
+            const int im = std::max(i - 1, -ng), ip = std::min(i + 1, grid_.nx + ng - 1);
+            const int jm = std::max(j - 1, -ng), jp = std::min(j + 1, grid_.ny + ng - 1);
+            const bool x_active = vel(s.h, s.hu, ip, j) - vel(s.h, s.hu, im, j) > 0.0;
+            const bool y_active = vel(s.h, s.hv, i, jp) - vel(s.h, s.hv, i, jm) > 0.0;
+            cx_(i, j) = k_.kx(x_active) * terrain_.px(i, j);
+            cy_(i, j) = k_.ky(x_active, y_active) * terrain_.py(i, j);
+            }
+            // Riemann invariants u -/+ 2a bound the velocities any Riemann fan
+            // started here can produce (the invariant domain of the system).
+            if (wet) {
+                const double u = s.hu(i, j) / h, v = s.hv(i, j) / h;
+                const double ax = 2.0 * std::sqrt(cx_(i, j) * h), ay = 2.0 * std::sqrt(cy_(i, j) * h);
+                u_lo_(i, j) = u - ax;
+                u_hi_(i, j) = u + ax;
+                v_lo_(i, j) = v - ay;
+                v_hi_(i, j) = v + ay;
+            } else {
+                u_lo_(i, j) = v_lo_(i, j) = kNoBound;
+                u_hi_(i, j) = v_hi_(i, j) = -kNoBound;
+            }
+        }
+    }
+}
+
+namespace {
+
+// Views of a state along one direction: normal and tangential momentum.
+struct DirectionalView {
+    const double* h;
+    const double* qn;
+    const double* qt;
+};
+
+DirectionalView along(const State& s, bool along_x) {
+    return {s.h.raw().data(), (along_x ? s.hu : s.hv).raw().data(), (along_x ? s.hv : s.hu).raw().data()};
+}
+
+struct DirectionalSink {
+    double* h;
+    double* qn;
+    double* qt;
+};
+
+DirectionalSink along(State& s, bool along_x) {
+    return {s.h.raw().data(), (along_x ? s.hu : s.hv).raw().data(), (along_x ? s.hv : s.hu).raw().data()};
+}
+
+inline Conserved load(const DirectionalView& v, std::ptrdiff_t k) { return {v.h[k], v.qn[k], v.qt[k]}; }
+
+inline double velocity(const Conserved& q, double h_dry) { return q.h >= h_dry && q.h > 0.0 ? q.qt / q.h : 0.0; }
+
+}  // namespace
+
+// First-order Godunov half step in one direction, the transverse predictor of
+// Wang & Li (2017) eqs. 6-8: for the x-fluxes the states are advanced by tau/2 in y.
+void Stepper::godunov_predictor(const State& s, double tau, bool along_x) {
+    // along_x == false: predictor in y, used by the x-fluxes (pred_y_), computed on
+    // columns [i0-2, i1+2) and rows [j0, j1); faces j in [j0, j1].
+    // along_x == true: predictor in x for the y-fluxes (pred_x_), rows [j0-2, j1+2).
+    const int ng = kGhostLayers;
+    const ActiveBox b = box_;
+    State& flux = along_x ? flux_x_ : flux_y_;
+    State& pred = along_x ? pred_x_ : pred_y_;
+    const Field2D& c = along_x ? cx_ : cy_;
+    const std::ptrdiff_t off = along_x ? 1 : s.h.stride();
+    const double ratio = 0.5 * tau / (along_x ? grid_.dx : grid_.dy);
+    const int ia = along_x ? b.i0 : std::max(b.i0 - ng, -ng);
+    const int ib = along_x ? b.i1 : std::min(b.i1 + ng, grid_.nx + ng);
+    const int ja = along_x ? std::max(b.j0 - ng, -ng) : b.j0;
+    const int jb = along_x ? std::min(b.j1 + ng, grid_.ny + ng) : b.j1;
+    const DirectionalView q = along(s, along_x);
+    const DirectionalSink f = along(flux, along_x);
+    const DirectionalSink p = along(pred, along_x);
+    const double* cc = c.raw().data();
+    const double hd = h_min_;
+    // Faces: the face "before" cell k lies between k - off and k.
+    const int fib = along_x ? ib + 1 : ib, fjb = along_x ? jb : jb + 1;
+#pragma omp parallel for schedule(static)
+    for (int j = ja; j < fjb; ++j) {
+        for (int i = ia; i < fib; ++i) {
+            const std::ptrdiff_t k = s.h.index(i, j);
+            const Conserved g = hllc_flux(load(q, k - off), load(q, k), cc[k - off], cc[k], hd);
+            f.h[k] = g.h;
+            f.qn[k] = g.qn;
+            f.qt[k] = g.qt;
+        }
+    }
+#pragma omp parallel for schedule(static)
+    for (int j = ja; j < jb; ++j) {
+        for (int i = ia; i < ib; ++i) {
+            const std::ptrdiff_t k = s.h.index(i, j);
+            double h = q.h[k] - ratio * (f.h[k + off] - f.h[k]);
+            double qn = q.qn[k] - ratio * (f.qn[k + off] - f.qn[k]);
+            double qt = q.qt[k] - ratio * (f.qt[k + off] - f.qt[k]);
+            if (h <= 0.0) h = qn = qt = 0.0;  // predicted states only feed fluxes
+            p.h[k] = h;
+            p.qn[k] = qn;
+            p.qt[k] = qt;
+        }
+    }
+}
+
+// Face fluxes in one direction over the active box: WAF-TVD on the predicted
+// states (Wang & Li 2017 eq. 9) or first-order HLLC on the current state.
+void Stepper::face_fluxes(const State& s, const State& predicted, double tau, bool along_x, bool waf) {
+    const ActiveBox b = box_;
+    State& flux = along_x ? flux_x_ : flux_y_;
+    const Field2D& c = along_x ? cx_ : cy_;
+    const std::ptrdiff_t off = along_x ? 1 : s.h.stride();
+    const double dt_dx = tau / (along_x ? grid_.dx : grid_.dy);
+    const DirectionalView q = along(waf ? predicted : s, along_x);
+    const DirectionalSink f = along(flux, along_x);
+    const double* cc = c.raw().data();
+    const double hd = h_min_;
+    const Limiter lim = numerics_.limiter;
+    // Jumps below these are flat for the limiter ratios: a millionth of the
+    // thin-layer depth, times 1 m/s for momenta; 1e-9 m/s for velocities.
+    const double tiny_h = 1e-6 * h_min_, tiny_q = tiny_h * 1.0, tiny_v = 1e-9;
+    const int fib = along_x ? b.i1 + 1 : b.i1, fjb = along_x ? b.j1 : b.j1 + 1;
+#pragma omp parallel for schedule(static)
+    for (int j = b.j0; j < fjb; ++j) {
+        for (int i = b.i0; i < fib; ++i) {
+            const std::ptrdiff_t k = s.h.index(i, j);
+            const Conserved ql = load(q, k - off), qr = load(q, k);
+            const HllcFan fan = hllc_fan(ql, qr, cc[k - off], cc[k], hd);
+            Conserved g;
+            const Conserved qll = waf ? load(q, k - 2 * off) : Conserved{};
+            const Conserved qrr = waf ? load(q, k + off) : Conserved{};
+            // At a wet/dry front (a stencil cell thinner than h_min) the WAF weights
+            // lose their meaning: use the first-order upwind flux there, as
+            // thin-layer schemes do (Wang & Li 2017 section 2.2.3).
+            const bool front = waf && (qll.h < hd || ql.h < hd || qr.h < hd || qrr.h < hd);
+            if (!waf || front) {
+                g = hllc_flux(fan);
+            } else {
+                // Limiter ratios (Toro 2009 section 16.7): the shear wave is limited on
+                // the transverse velocity; the outer waves on the most restrictive of
+                // the depth and normal-momentum ratios. Depth alone lets a face with
+                // equal depths but a velocity jump take psi -> 2 (downwind) and the
+                // momentum oscillates; the minimum keeps each component TVD.
+                const double dh_loc = qr.h - ql.h, dq_loc = qr.qn - ql.qn;
+                const double dv_loc = velocity(qr, hd) - velocity(ql, hd);
+                const double s_wave[3] = {fan.s_l, fan.s_star, fan.s_r};
+                double psi[3];
+                for (int m = 0; m < 3; ++m) {
+                    const bool from_left = s_wave[m] >= 0.0;
+                    if (m == 1) {
+                        const double dv_up = from_left ? velocity(ql, hd) - velocity(qll, hd)
+                                                       : velocity(qrr, hd) - velocity(qr, hd);
+                        psi[m] = limiter_psi(lim, jump_ratio(dv_up, dv_loc, tiny_v));
+                    } else {
+                        const double dh_up = from_left ? ql.h - qll.h : qrr.h - qr.h;
+                        const double dq_up = from_left ? ql.qn - qll.qn : qrr.qn - qr.qn;
+                        psi[m] = std::min(limiter_psi(lim, jump_ratio(dh_up, dh_loc, tiny_h)),
+                                          limiter_psi(lim, jump_ratio(dq_up, dq_loc, tiny_q)));
+                    }
+                }
+                g = waf_flux(fan, dt_dx, psi);
+            }
+            f.h[k] = g.h;
+            f.qn[k] = g.qn;
+            f.qt[k] = g.qt;
+        }
+    }
+}
+
+// Walls pass no mass and no tangential momentum; open edges pass only outflow.
+void Stepper::fix_boundary_faces(const State& s) {
+    const bool wall = numerics_.boundary == Boundary::wall;
+    const ActiveBox b = box_;
+    const auto fix = [&](State& flux, int i, int j, double outward_sign, bool x_face) {
+        double& fh = flux.h(i, j);
+        double& fn = x_face ? flux.hu(i, j) : flux.hv(i, j);
+        double& ft = x_face ? flux.hv(i, j) : flux.hu(i, j);
+        if (wall || fh * outward_sign < 0.0) {
+            // Wall flux: keep the normal momentum (pressure and reflection), no mass.
+            fh = 0.0;
+            ft = 0.0;
+            if (!wall) {
+                // Inflow at an open edge is refused; the interior's pressure acts as at a wall.
+                const int ii = x_face ? (outward_sign < 0 ? 0 : grid_.nx - 1) : i;
+                const int jj = x_face ? j : (outward_sign < 0 ? 0 : grid_.ny - 1);
+                const double h = s.h(ii, jj) >= h_min_ ? s.h(ii, jj) : 0.0;
+                fn = 0.5 * (x_face ? cx_(ii, jj) : cy_(ii, jj)) * h * h;
+            }
+        }
+    };
+    if (b.i0 == 0)
+        for (int j = b.j0; j < b.j1; ++j) fix(flux_x_, 0, j, -1.0, true);
+    if (b.i1 == grid_.nx)
+        for (int j = b.j0; j < b.j1; ++j) fix(flux_x_, grid_.nx, j, 1.0, true);
+    if (b.j0 == 0)
+        for (int i = b.i0; i < b.i1; ++i) fix(flux_y_, i, 0, -1.0, false);
+    if (b.j1 == grid_.ny)
+        for (int i = b.i0; i < b.i1; ++i) fix(flux_y_, i, grid_.ny, 1.0, false);
+}
+
+// Positivity and the thin-layer rule, conservatively: each face flux is scaled by
+// the factor of its donor cell (the cell its mass leaves), chosen so that no cell
+// exports more than it holds; thin cells (h < h_min) export nothing. Every face
+// flux is then added to one cell and subtracted from the other, so the volume
+// changes only by what crosses the open edges.
+void Stepper::limit_and_update(State& s, double tau) {
+    const ActiveBox b = box_;
+    const double rx = tau / grid_.dx, ry = tau / grid_.dy;
+    const double hmin = h_min_;
+    const std::ptrdiff_t sx = 1, sy = s.h.stride();
+    double* fxh = flux_x_.h.raw().data();
+    double* fyh = flux_y_.h.raw().data();
+    double* factor = donor_factor_.raw().data();
+    const double* h = s.h.raw().data();
+#pragma omp parallel for schedule(static)
+    for (int j = b.j0; j < b.j1; ++j) {
+        for (int i = b.i0; i < b.i1; ++i) {
+            const std::ptrdiff_t k = s.h.index(i, j);
+            const double out = rx * (std::max(fxh[k + sx], 0.0) + std::max(-fxh[k], 0.0)) +
+                               ry * (std::max(fyh[k + sy], 0.0) + std::max(-fyh[k], 0.0));
+            double f = 1.0;
+            if (h[k] < hmin) f = 0.0;
+            else if (out > h[k]) f = h[k] / out;
+            factor[k] = f;
+        }
+    }
+    // Scale each face by its donor's factor.
+    const auto scale_faces = [&](State& flux, std::ptrdiff_t off, int fib, int fjb) {
+        double* fh = flux.h.raw().data();
+        double* fu = flux.hu.raw().data();
+        double* fv = flux.hv.raw().data();
+#pragma omp parallel for schedule(static)
+        for (int j = b.j0; j < fjb; ++j) {
+            for (int i = b.i0; i < fib; ++i) {
+                const std::ptrdiff_t k = s.h.index(i, j);
+                if (fh[k] == 0.0) continue;
+                const double f = factor[fh[k] > 0.0 ? k - off : k];
+                if (f < 1.0) {
+                    fh[k] *= f;
+                    fu[k] *= f;
+                    fv[k] *= f;
+                }
+            }
+        }
+    };
+    scale_faces(flux_x_, sx, b.i1 + 1, b.j1);
+    scale_faces(flux_y_, sy, b.i1, b.j1 + 1);
+
+    // Conservative update, U -= tau/dx dF + tau/dy dG (Wang & Li 2017 eq. 5).
+    double* hh = s.h.raw().data();
+    double* hu = s.hu.raw().data();
+    double* hv = s.hv.raw().data();
+    const double* fxu = flux_x_.hu.raw().data();
+    const double* fxv = flux_x_.hv.raw().data();
+    const double* fyu = flux_y_.hu.raw().data();
+    const double* fyv = flux_y_.hv.raw().data();
+#pragma omp parallel for schedule(static)
+    for (int j = b.j0; j < b.j1; ++j) {
+        for (int i = b.i0; i < b.i1; ++i) {
+            const std::ptrdiff_t k = s.h.index(i, j);
+            double hn = hh[k] - rx * (fxh[k + sx] - fxh[k]) - ry * (fyh[k + sy] - fyh[k]);
+            // The donor factor bounds the export by h; what is left is round-off.
+            if (hn < 0.0) hn = 0.0;
+            hh[k] = hn;
+            hu[k] -= rx * (fxu[k + sx] - fxu[k]) + ry * (fyu[k + sy] - fyu[k]);
+            hv[k] -= rx * (fxv[k + sx] - fxv[k]) + ry * (fyv[k + sy] - fyv[k]);
+        }
+    }
+    // Invariant-domain bound: the new velocity of a cell must lie within the range
+    // of the Riemann invariants u -/+ 2a of the cell and its eight neighbours
+    // before the update (the unsplit predictor couples the diagonals). Smooth wet
+    // flow never reaches the bound; near-vacuum cells between diverging flows,
+    // where the limited fluxes act on a vanishing mass, are clamped to it.
+#pragma omp parallel for schedule(static)
+    for (int j = b.j0; j < b.j1; ++j) {
+        for (int i = b.i0; i < b.i1; ++i) {
+            const std::ptrdiff_t k = s.h.index(i, j);
+            if (hh[k] <= 0.0) {
+                hu[k] = hv[k] = 0.0;
+                continue;
+            }
+            double ulo = kNoBound, uhi = -kNoBound, vlo = kNoBound, vhi = -kNoBound;
+            for (int dj = -1; dj <= 1; ++dj) {
+                for (int di = -1; di <= 1; ++di) {
+                    ulo = std::min(ulo, u_lo_(i + di, j + dj));
+                    uhi = std::max(uhi, u_hi_(i + di, j + dj));
+                    vlo = std::min(vlo, v_lo_(i + di, j + dj));
+                    vhi = std::max(vhi, v_hi_(i + di, j + dj));
+                }
+            }
+            if (ulo > uhi) {  // no wet cell around: nothing can have moved it
+                hu[k] = hv[k] = 0.0;
+                continue;
+            }
+            const double u = hu[k] / hh[k], v = hv[k] / hh[k];
+            if (u < ulo || u > uhi) hu[k] = hh[k] * std::clamp(u, ulo, uhi);
+            if (v < vlo || v > vhi) hv[k] = hh[k] * std::clamp(v, vlo, vhi);
+        }
+    }
+    // Volume through the open edges, after scaling.
+    double out = 0.0;
+    if (b.i0 == 0)
+        for (int j = b.j0; j < b.j1; ++j) out += std::max(-flux_x_.h(0, j), 0.0) * tau * grid_.dy;
+    if (b.i1 == grid_.nx)
+        for (int j = b.j0; j < b.j1; ++j) out += std::max(flux_x_.h(grid_.nx, j), 0.0) * tau * grid_.dy;
+    if (b.j0 == 0)
+        for (int i = b.i0; i < b.i1; ++i) out += std::max(-flux_y_.h(i, 0), 0.0) * tau * grid_.dx;
+    if (b.j1 == grid_.ny)
+        for (int i = b.i0; i < b.i1; ++i) out += std::max(flux_y_.h(i, grid_.ny), 0.0) * tau * grid_.dx;
+    outflow_volume_ += out;
+}
+
+// Thin-layer rule (Wang & Li 2017 section 2.2.3): a cell thinner than h_min takes
+// the velocity of its deepest wet neighbour, or stops if it has none.
+void Stepper::thin_layer_velocities(State& s) const {
+    const ActiveBox b = box_;
+    const double hmin = h_min_;
+#pragma omp parallel for schedule(static)
+    for (int j = b.j0; j < b.j1; ++j) {
+        for (int i = b.i0; i < b.i1; ++i) {
+            const double h = s.h(i, j);
+            if (h >= hmin) continue;
+            double best = hmin, u = 0.0, v = 0.0;
+            const int ni[4] = {i - 1, i + 1, i, i};
+            const int nj[4] = {j, j, j - 1, j + 1};
+            for (int n = 0; n < 4; ++n) {
+                const double hn = s.h(ni[n], nj[n]);  // ghosts hold the boundary images
+                if (hn >= best) {
+                    best = hn;
+                    u = s.hu(ni[n], nj[n]) / hn;
+                    v = s.hv(ni[n], nj[n]) / hn;
+                }
+            }
+            s.hu(i, j) = h * u;
+            s.hv(i, j) = h * v;
+        }
+    }
+}
+
+void Stepper::advect(State& s, double tau) {
+    fill_ghosts(s);
+    update_pressure_coefficients(s);
+    const bool waf = numerics_.scheme == Scheme::waf;
+    if (waf) {
+        godunov_predictor(s, tau, /*along_x=*/false);  // states for the x-fluxes
+        godunov_predictor(s, tau, /*along_x=*/true);   // states for the y-fluxes
+    }
+    face_fluxes(s, pred_y_, tau, /*along_x=*/true, waf);
+    face_fluxes(s, pred_x_, tau, /*along_x=*/false, waf);
+    fix_boundary_faces(s);
+    limit_and_update(s, tau);
+    fill_ghosts(s);
+    thin_layer_velocities(s);
+}
+
+// ---------------------------------------------------------------- sources S(dt)
+
+// Point-wise sources, friction last (MODEL.md 2.4, GeoClaw src2): tangential
+// gravity first; then Coulomb friction of magnitude f = tan(delta) N dt against the
+// true velocity, which stops the cell if |u| <= f and never reverses it.
+void Stepper::apply_sources(State& s, double dt) const {
+    const ActiveBox b = box_;
+    const int m = numerics_.source_substeps;
+    const double sub = dt / m;
+    const bool curv = terrain_.has_curvature, metric = terrain_.has_metric;
+    const double td = tan_delta_;
+#pragma omp parallel for schedule(static)
+    for (int j = b.j0; j < b.j1; ++j) {
+        double* h = s.h.row(j);
+        double* hu = s.hu.row(j);
+        double* hv = s.hv.row(j);
+        const double* ax = terrain_.ax.row(j);
+        const double* ay = terrain_.ay.row(j);
+        const double* gn = terrain_.gn.row(j);
+        for (int i = b.i0; i < b.i1; ++i) {
+            if (h[i] <= 0.0) continue;
+            double u = hu[i] / h[i], v = hv[i] / h[i];
+            for (int n = 0; n < m; ++n) {
+                u += sub * ax[i];
+                v += sub * ay[i];
+                double load = gn[i];
+                if (curv) {
+                    load += terrain_.cxx(i, j) * u * u + 2.0 * terrain_.cxy(i, j) * u * v +
+                            terrain_.cyy(i, j) * v * v;
+                }
+                load = std::max(load, 0.0);  // material lifting off feels no friction
+                double speed2 = u * u + v * v;
+                if (metric) {
+                    const double w = terrain_.sx(i, j) * u + terrain_.sy(i, j) * v;
+                    speed2 += w * w;
+                }
+                const double speed = std::sqrt(speed2);
+                const double f = td * load * sub;
+                if (speed <= f) {
+                    u = v = 0.0;
+                } else {
+                    const double scale = 1.0 - f / speed;
+                    u *= scale;
+                    v *= scale;
+                }
+            }
+            hu[i] = h[i] * u;
+            hv[i] = h[i] * v;
+        }
+    }
+}
+
+}  // namespace avalanche
