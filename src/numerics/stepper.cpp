@@ -164,7 +164,7 @@ void Stepper::update_pressure_coefficients(const State& s) {
             // (Wang & Li 2017 after eq. 3); central differences, clamped at the padding.
             const int im = std::max(i - 1, -ng), ip = std::min(i + 1, grid_.nx + ng - 1);
             const int jm = std::max(j - 1, -ng), jp = std::min(j + 1, grid_.ny + ng - 1);
-            const bool x_active = vel(s.h, s.hu, ip, j) - vel(s.h, s.hu, im, j) > 0.0;
+            const bool x_active = vel(s.h, s.hu, ip, j) - vel(s.h, s.hu, im, j) >= 0.0;
             const bool y_active = vel(s.h, s.hv, i, jp) - vel(s.h, s.hv, i, jm) > 0.0;
             cx_(i, j) = k_.kx(x_active) * terrain_.px(i, j);
             cy_(i, j) = k_.ky(x_active, y_active) * terrain_.py(i, j);
@@ -277,9 +277,11 @@ void Stepper::face_fluxes(const State& s, const State& predicted, double tau, bo
     const double* cc = c.raw().data();
     const double hd = h_min_;
     const Limiter lim = numerics_.limiter;
-    // Jumps below these are flat for the limiter ratios: a millionth of the
-    // thin-layer depth, times 1 m/s for momenta; 1e-9 m/s for velocities.
-    const double tiny_h = 1e-6 * h_min_, tiny_q = tiny_h * 1.0, tiny_v = 1e-9;
+    // A local jump counts as flat when it is below 1e-12 of the values it is the
+    // difference of: relative, so that the decision does not depend on units or
+    // on the frame (DEM and chute frames scale h and u by cos(theta)), and above
+    // round-off, so that a jump of a few ulps does not swing psi from 0 to 2.
+    constexpr double kFlat = 1e-12;
     const int fib = along_x ? b.i1 + 1 : b.i1, fjb = along_x ? b.j1 : b.j1 + 1;
 #pragma omp parallel for schedule(static)
     for (int j = b.j0; j < fjb; ++j) {
@@ -311,10 +313,14 @@ void Stepper::face_fluxes(const State& s, const State& predicted, double tau, bo
                     if (m == 1) {
                         const double dv_up = from_left ? velocity(ql, hd) - velocity(qll, hd)
                                                        : velocity(qrr, hd) - velocity(qr, hd);
+                        const double tiny_v =
+                            kFlat * std::max(std::abs(velocity(ql, hd)), std::abs(velocity(qr, hd)));
                         psi[m] = limiter_psi(lim, jump_ratio(dv_up, dv_loc, tiny_v));
                     } else {
                         const double dh_up = from_left ? ql.h - qll.h : qrr.h - qr.h;
                         const double dq_up = from_left ? ql.qn - qll.qn : qrr.qn - qr.qn;
+                        const double tiny_h = kFlat * std::max(ql.h, qr.h);
+                        const double tiny_q = kFlat * std::max(std::abs(ql.qn), std::abs(qr.qn));
                         psi[m] = std::min(limiter_psi(lim, jump_ratio(dh_up, dh_loc, tiny_h)),
                                           limiter_psi(lim, jump_ratio(dq_up, dq_loc, tiny_q)));
                     }

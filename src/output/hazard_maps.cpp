@@ -1,0 +1,93 @@
+#include "avalanche/output/hazard_maps.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace avalanche {
+
+HazardClass classify(double max_depth, double max_pressure_kpa, const OutputParams& p) {
+    if (!(max_depth >= p.h_threshold)) return HazardClass::none;
+    if (max_pressure_kpa >= p.pressure_high_kpa) return HazardClass::high;
+    if (max_pressure_kpa >= p.pressure_low_kpa) return HazardClass::medium;
+    return HazardClass::low;
+}
+
+double true_speed(const State& s, const TerrainFields& t, int i, int j) {
+    const double h = s.h(i, j);
+    if (h <= 0.0) return 0.0;
+    const double u = s.hu(i, j) / h, v = s.hv(i, j) / h;
+    double speed2 = u * u + v * v;
+    if (t.has_metric) {
+        const double w = t.sx(i, j) * u + t.sy(i, j) * v;  // vertical component on the bed
+        speed2 += w * w;
+    }
+    return std::sqrt(speed2);
+}
+
+HazardMaps::HazardMaps(const Grid& grid, const OutputParams& params, double density)
+    : grid_(grid),
+      params_(params),
+      density_(density),
+      max_depth_(grid.cells(), 0.0),
+      max_speed_(grid.cells(), 0.0),
+      max_pressure_(grid.cells(), 0.0),
+      arrival_(grid.cells(), kNotReached),
+      deposit_(grid.cells(), 0.0) {}
+
+void HazardMaps::restore(std::vector<double> max_depth, std::vector<double> max_speed,
+                         std::vector<double> max_pressure, std::vector<double> arrival) {
+    max_depth_ = std::move(max_depth);
+    max_speed_ = std::move(max_speed);
+    max_pressure_ = std::move(max_pressure);
+    arrival_ = std::move(arrival);
+}
+
+void HazardMaps::accumulate(const SimulationView& v, int i0, int i1, int j0, int j1) {
+    const double rho_kpa = density_ / 1000.0;
+    const double thr = params_.h_threshold;
+#pragma omp parallel for schedule(static)
+    for (int j = j0; j < j1; ++j) {
+        for (int i = i0; i < i1; ++i) {
+            const double hn = v.state.h(i, j) * v.terrain.normal_thickness(i, j);
+            if (hn <= 0.0) continue;
+            const std::size_t k = static_cast<std::size_t>(j) * grid_.nx + i;
+            // Speeds and pressures of the thin-layer film below h_thr are not hazard:
+            // they are the numerical wet/dry layer, not flowing material.
+            if (hn < thr) {
+                max_depth_[k] = std::max(max_depth_[k], hn);
+                continue;
+            }
+            const double speed = true_speed(v.state, v.terrain, i, j);
+            max_depth_[k] = std::max(max_depth_[k], hn);
+            max_speed_[k] = std::max(max_speed_[k], speed);
+            max_pressure_[k] = std::max(max_pressure_[k], rho_kpa * speed * speed);
+            if (arrival_[k] == kNotReached) arrival_[k] = v.t;
+        }
+    }
+}
+
+void HazardMaps::on_start(const SimulationView& v) {
+    accumulate(v, 0, grid_.nx, 0, grid_.ny);
+}
+
+void HazardMaps::on_step(const SimulationView& v) {
+    accumulate(v, v.box.i0, v.box.i1, v.box.j0, v.box.j1);
+}
+
+void HazardMaps::on_end(const SimulationView& v) {
+    for (int j = 0; j < grid_.ny; ++j)
+        for (int i = 0; i < grid_.nx; ++i) {
+            const double hn = v.state.h(i, j) * v.terrain.normal_thickness(i, j);
+            // The deposit map shows material, not the thin-layer film.
+            deposit_[static_cast<std::size_t>(j) * grid_.nx + i] = hn >= params_.h_threshold ? hn : 0.0;
+        }
+}
+
+std::vector<std::uint8_t> HazardMaps::hazard_classes() const {
+    std::vector<std::uint8_t> out(grid_.cells());
+    for (std::size_t k = 0; k < out.size(); ++k)
+        out[k] = static_cast<std::uint8_t>(classify(max_depth_[k], max_pressure_[k], params_));
+    return out;
+}
+
+}  // namespace avalanche

@@ -1,0 +1,58 @@
+#include "avalanche/output/runout.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace avalanche {
+
+RunoutMetrics compute_runout(const Grid& grid, const TerrainFields& terrain, const State& initial,
+                             const HazardMaps& maps, const OutputParams& params,
+                             const HorizontalPosition& position, double cell_area_m2) {
+    RunoutMetrics m;
+    const double thr = params.h_threshold;
+    int top_i = -1, top_j = -1;
+    double top_z = -1e300;
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i)
+            if (initial.h(i, j) * terrain.normal_thickness(i, j) >= thr && terrain.elevation(i, j) > top_z) {
+                top_z = terrain.elevation(i, j);
+                top_i = i;
+                top_j = j;
+            }
+    std::size_t reached = 0;
+    double far2 = -1.0;
+    int tip_i = -1, tip_j = -1;
+    const std::array<double, 2> top = top_i >= 0 ? position(top_i, top_j) : std::array<double, 2>{0, 0};
+    for (int j = 0; j < grid.ny; ++j) {
+        for (int i = 0; i < grid.nx; ++i) {
+            const std::size_t k = static_cast<std::size_t>(j) * grid.nx + i;
+            m.max_depth_m = std::max(m.max_depth_m, maps.max_depth()[k]);
+            m.max_velocity_ms = std::max(m.max_velocity_ms, maps.max_speed()[k]);
+            m.max_pressure_kpa = std::max(m.max_pressure_kpa, maps.max_pressure()[k]);
+            m.deposit_volume_m3 += maps.deposit_depth()[k] / terrain.normal_thickness(i, j) * cell_area_m2;
+            if (maps.max_depth()[k] < thr) continue;
+            ++reached;
+            if (top_i < 0) continue;
+            const auto p = position(i, j);
+            const double d2 = (p[0] - top[0]) * (p[0] - top[0]) + (p[1] - top[1]) * (p[1] - top[1]);
+            if (d2 > far2) {
+                far2 = d2;
+                tip_i = i;
+                tip_j = j;
+            }
+        }
+    }
+    m.affected_area_m2 = static_cast<double>(reached) * cell_area_m2;
+    if (top_i < 0 || tip_i < 0) return m;
+    m.top_xy = top;
+    m.tip_xy = position(tip_i, tip_j);
+    m.runout_length_m = std::sqrt(far2);
+    m.fall_height_m = top_z - terrain.elevation(tip_i, tip_j);
+    if (m.runout_length_m > 0.0) {
+        m.travel_angle_deg = std::atan2(m.fall_height_m, m.runout_length_m) * 180.0 / std::numbers::pi;
+        if (m.fall_height_m > 0.0) m.runout_efficiency = m.runout_length_m / m.fall_height_m;
+    }
+    return m;
+}
+
+}  // namespace avalanche

@@ -1,0 +1,142 @@
+// Hazard products computed by the observers of the time loop (MODEL.md 5):
+// classification thresholds, consistency of the maxima with each other, arrival
+// times, and the runout metrics against the chute geometry computed independently.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "avalanche/core/simulation.hpp"
+#include "avalanche/output/hazard_maps.hpp"
+#include "avalanche/output/monitoring.hpp"
+#include "avalanche/output/runout.hpp"
+#include "avalanche/physics/chute.hpp"
+#include "avalanche/physics/release.hpp"
+
+using namespace avalanche;
+
+TEST(HazardClass, PressureThresholds) {
+    OutputParams p;  // 0.01 m, 3 and 30 kPa
+    EXPECT_EQ(classify(0.005, 100.0, p), HazardClass::none) << "below the depth threshold";
+    EXPECT_EQ(classify(0.02, 0.0, p), HazardClass::low);
+    EXPECT_EQ(classify(0.02, 2.99, p), HazardClass::low);
+    EXPECT_EQ(classify(0.02, 3.0, p), HazardClass::medium);
+    EXPECT_EQ(classify(0.02, 29.9, p), HazardClass::medium);
+    EXPECT_EQ(classify(0.02, 30.0, p), HazardClass::high);
+}
+
+namespace {
+struct ChuteRun {
+    ChuteGeometry chute;
+    Grid grid;
+    TerrainFields terrain;
+    State initial;
+    RunStatistics stats;
+    std::unique_ptr<HazardMaps> maps;
+    std::unique_ptr<MonitoringPoints> probes;
+};
+
+ChuteRun run_small_chute() {
+    ChuteRun r;
+    r.chute.slope_deg = 35.0;
+    r.chute.length = 40.0;
+    r.chute.width = 10.0;
+    r.chute.transition_start = 15.0;
+    r.chute.transition_end = 20.0;
+    r.grid = chute_grid(r.chute, 0.5);
+    r.terrain = chute_terrain(r.chute, r.grid, 9.81);
+    r.initial = state_at_rest(r.grid, rasterize_release(ParaboloidRelease{{5.0, 5.0}, 2.0, 1.0}, r.grid), r.terrain);
+    MaterialParams m;
+    m.phi_deg = 30.0;
+    m.delta_deg = 22.0;
+    NumericsParams n;
+    n.t_end = 20.0;
+    OutputParams out;
+    r.maps = std::make_unique<HazardMaps>(r.grid, out, 2000.0);
+    r.probes = std::make_unique<MonitoringPoints>(
+        std::vector<ProbeLocation>{{"on the plane", 10.25, 5.25, 20, 10}}, 0.1, 2000.0);
+    Simulation sim(r.grid, r.terrain, m, n, r.initial, effective_h_min(n, r.initial, r.terrain));
+    sim.add_observer(r.maps.get());
+    sim.add_observer(r.probes.get());
+    r.stats = sim.run();
+    return r;
+}
+}  // namespace
+
+TEST(HazardMaps, MaximaArrivalAndRunoutAreConsistent) {
+    const ChuteRun r = run_small_chute();
+    ASSERT_NE(r.stats.end_reason, EndReason::end_time) << "the run should stop on the runout";
+    const auto& depth = r.maps->max_depth();
+    const auto& speed = r.maps->max_speed();
+    const auto& pressure = r.maps->max_pressure();
+    const auto& arrival = r.maps->arrival_time();
+    const auto& deposit = r.maps->deposit_depth();
+    const OutputParams out;
+    int reached = 0;
+    for (std::size_t k = 0; k < depth.size(); ++k) {
+        EXPECT_GE(depth[k] + 1e-15, deposit[k]) << "a deposit never exceeds the maximum depth";
+        EXPECT_NEAR(pressure[k], 2.0 * speed[k] * speed[k], 1e-9 * (1.0 + pressure[k]));  // rho = 2000 kg/m3, kPa
+        const bool is_reached = depth[k] >= out.h_threshold;
+        EXPECT_EQ(is_reached, arrival[k] != HazardMaps::kNotReached);
+        reached += is_reached;
+    }
+    ASSERT_GT(reached, 50);
+    // Downstream of the release, the centre line is reached later the farther it is.
+    const int jc = r.grid.ny / 2;
+    double previous = 0.0;
+    for (int i = 20; i < r.grid.nx; ++i) {
+        const double a = arrival[static_cast<std::size_t>(jc) * r.grid.nx + i];
+        if (a == HazardMaps::kNotReached) break;
+        EXPECT_GE(a, previous) << "arrival time along the centre line at i = " << i;
+        previous = a;
+    }
+
+    // Runout metrics against the chute geometry: the tip is the farthest reached
+    // cell, the top the highest release cell; H and L from the chute's own integrals.
+    const auto position = [&](int i, int j) {
+        return std::array<double, 2>{r.chute.horizontal_distance(r.grid.x_center(i)), r.grid.y_center(j)};
+    };
+    const RunoutMetrics m = compute_runout(r.grid, r.terrain, r.initial, *r.maps, out, position,
+                                           r.grid.cell_area());
+    double x_top = 1e300, x_tip = -1e300;
+    for (int j = 0; j < r.grid.ny; ++j)
+        for (int i = 0; i < r.grid.nx; ++i) {
+            if (r.initial.h(i, j) >= out.h_threshold) x_top = std::min(x_top, r.grid.x_center(i));
+            if (depth[static_cast<std::size_t>(j) * r.grid.nx + i] >= out.h_threshold)
+                x_tip = std::max(x_tip, r.grid.x_center(i));
+        }
+    const double fall = r.chute.elevation(x_top) - r.chute.elevation(x_tip);
+    const double along = r.chute.horizontal_distance(x_tip) - r.chute.horizontal_distance(x_top);
+    EXPECT_NEAR(m.fall_height_m, fall, 1e-9);
+    // The farthest cell may be off the centre line: L is at least the along-slope part.
+    EXPECT_GE(m.runout_length_m + 1e-9, along);
+    EXPECT_LE(m.runout_length_m, std::hypot(along, r.chute.width));
+    EXPECT_NEAR(m.travel_angle_deg, std::atan2(m.fall_height_m, m.runout_length_m) * 180.0 / std::numbers::pi, 1e-12);
+    EXPECT_NEAR(m.runout_efficiency, m.runout_length_m / m.fall_height_m, 1e-12);
+    EXPECT_DOUBLE_EQ(m.affected_area_m2, reached * r.grid.cell_area());
+    // Everything stopped in the domain: the deposit holds the released volume less
+    // the thin film below h_thr.
+    EXPECT_LE(m.deposit_volume_m3, r.stats.released_volume * (1 + 1e-12));
+    EXPECT_GT(m.deposit_volume_m3, 0.95 * r.stats.released_volume);
+    // A travel angle above the friction angle would mean the mass stopped too early;
+    // far below it, that it ran too far for a Coulomb material: 22 deg +- 8.
+    EXPECT_GT(m.travel_angle_deg, 14.0);
+    EXPECT_LT(m.travel_angle_deg, 30.0);
+}
+
+TEST(MonitoringPoints, SeriesSampledAtTheIntervalAndConsistent) {
+    const ChuteRun r = run_small_chute();
+    const auto& s = r.probes->series().at(0);
+    ASSERT_GT(s.size(), 20u);
+    EXPECT_EQ(s.front().t, 0.0);
+    double max_h = 0.0;
+    for (std::size_t k = 1; k < s.size(); ++k) {
+        EXPECT_GT(s[k].t, s[k - 1].t);
+        EXPECT_NEAR(s[k].pressure, 2.0 * s[k].speed * s[k].speed, 1e-9 * (1 + s[k].pressure));
+        max_h = std::max(max_h, s[k].h);
+    }
+    // The probe sits on the path: the flow passed it.
+    EXPECT_GT(max_h, 0.01);
+    const std::size_t k = static_cast<std::size_t>(r.probes->points()[0].j) * r.grid.nx + r.probes->points()[0].i;
+    EXPECT_LE(max_h, r.maps->max_depth()[k] + 1e-12) << "samples never exceed the per-step maximum";
+}
