@@ -1,0 +1,54 @@
+#pragma once
+// A run in two steps (docs/cli.md):
+//   prepare_scene: scenario -> grid, terrain coefficients, initial state and georeference
+//                  (the chute frame here; the DEM frame in prepare_dem.cpp);
+//   execute_scene: builds the Simulation, attaches the writers, runs, writes the outputs.
+// Both frames share execute_scene, so every output is written the same way.
+#include <array>
+#include <functional>
+#include <string>
+
+#include "avalanche/core/grid.hpp"
+#include "avalanche/core/simulation.hpp"
+#include "avalanche/core/state.hpp"
+#include "avalanche/io/scenario.hpp"
+#include "avalanche/physics/terrain.hpp"
+
+namespace avalanche {
+
+struct PreparedScene {
+    Grid grid;
+    TerrainFields terrain;
+    State initial;                         // at rest; h in the frame's thickness
+    std::array<double, 6> geotransform{};  // GDAL convention: row 0 at the top (max y)
+    std::string crs_wkt;                   // empty in the chute frame
+    Frame frame = Frame::chute;
+    std::string description;  // one line for the log, e.g. "chute 60 x 40 m"
+};
+
+// Dispatches on the terrain: ChuteGeometry here, DemTerrainSpec to prepare_dem_scene.
+PreparedScene prepare_scene(const Scenario& s);
+
+struct RunOptions {
+    std::string out_dir;       // must exist and be writable (prepare_output_folder)
+    std::string command_line;  // recorded in summary.json
+    // Called about every 0.1 s of wall time with the fraction done; false interrupts.
+    std::function<bool(double)> progress;
+};
+
+struct RunOutcome {
+    RunStatistics stats;
+    std::string results_path;
+    std::string summary_path;
+};
+
+// Runs the scene and writes DIR/results.h5 and DIR/summary.json (atomically). The scene
+// must outlive the call (the simulation reads its terrain in place).
+RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const RunOptions& options);
+
+// Output folder rules: refuses (OutputError, exit 4) a folder that already holds
+// summary.json or results.h5 unless `overwrite`; creates a missing folder; checks that
+// it is writable before any work is done.
+void prepare_output_folder(const std::string& dir, bool overwrite);
+
+}  // namespace avalanche

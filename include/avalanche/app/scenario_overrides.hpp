@@ -1,0 +1,43 @@
+#pragma once
+// Command-line values that override the scenario (defaults < scenario file < flags).
+// Each flag has the name of its scenario key (docs/cli.md); an unset optional leaves
+// the scenario value alone. No CLI11 here, so the precedence rules are testable alone.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "avalanche/io/scenario.hpp"
+
+namespace avalanche {
+
+struct ScenarioOverrides {
+    std::vector<std::string> dem;        // --dem (repeatable): terrain.dem, makes a DEM terrain
+    std::optional<std::string> release;  // --release: polygons, or a raster (.tif/.tiff/.asc/.vrt)
+    std::optional<double> thickness;     // --thickness: release.thickness (m)
+    std::optional<std::string> thickness_field;  // --thickness-field
+    std::optional<double> volume;                // --volume: release.volume (m^3)
+    std::optional<std::string> crs;              // --crs: terrain.crs
+    std::optional<std::string> points;           // --points: points.file
+    std::optional<double> phi;                   // --phi: material.phi_deg
+    std::optional<double> delta;                 // --delta: material.delta_deg
+    std::optional<double> density;               // --density: material.density
+    std::optional<std::string> earth_pressure;   // --earth-pressure
+    std::optional<double> cell_size;             // --cell-size: numerics.cell_size
+    std::optional<double> t_end;                 // --t-end
+    std::optional<double> cfl;                   // --cfl
+    std::optional<std::string> scheme;           // --scheme
+    std::optional<std::string> limiter;          // --limiter
+    std::optional<double> output_interval;       // --output-interval
+};
+
+// Applies the flags; throws ConfigError naming the flag for a bad choice or a flag that
+// does not fit the scenario (e.g. --thickness on a cap).
+void apply_overrides(Scenario& s, const ScenarioOverrides& o);
+
+// The scenario of a run: the file (if any) < the flags, validated once. A ConfigError
+// names the flag when the offending value came from a flag, else the file and its key.
+// Without a file, --dem and --release make a DEM scenario.
+Scenario assemble_scenario(const std::optional<std::string>& scenario_file,
+                           const ScenarioOverrides& o);
+
+}  // namespace avalanche

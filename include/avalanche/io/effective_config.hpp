@@ -1,0 +1,23 @@
+#pragma once
+// The effective configuration of a run (defaults < scenario file < flags) as canonical
+// JSON, and its hash: both go into every output (STYLE.md 6), so that two results can be
+// told apart, or recognised as the same run, from their files alone.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "avalanche/io/scenario.hpp"
+
+namespace avalanche {
+
+// Every parameter, grouped as in the scenario file (terrain, release, material,
+// numerics, points, output), with the choices spelled as in the file. Keys are sorted,
+// so dump() is canonical.
+nlohmann::json effective_config(const Scenario& s);
+
+// FNV-1a (64 bit) of the compact dump of `config`, as 16 hex digits.
+std::string config_hash(const nlohmann::json& config);
+
+// The software version written into outputs (the CMake project version).
+std::string software_version();
+
+}  // namespace avalanche

@@ -1,0 +1,91 @@
+// The error boundary of the program (STYLE.md 7): parse, dispatch, and turn every
+// avalanche::Error into one line on stderr and its documented exit code.
+#include "avalanche/app/cli.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "avalanche/core/error.hpp"
+#include "avalanche/io/effective_config.hpp"
+#include "commands.hpp"
+#include "logging.hpp"
+
+namespace avalanche {
+
+namespace {
+
+void print_error(const std::string& message) {
+    std::fprintf(stderr, "avalanche-hazard: error: %s\n", message.c_str());
+    std::fflush(stderr);
+}
+
+std::string join_command_line(int argc, char** argv) {
+    std::string out;
+    for (int k = 0; k < argc; ++k) {
+        std::string a = argv[k];
+        if (a.find_first_of(" \t\"'") != std::string::npos) a = "'" + a + "'";
+        out += (k ? " " : "") + a;
+    }
+    return out;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+    detail::GlobalOptions global;
+    global.command_line = join_command_line(argc, argv);
+    CLI::App app{
+        "avalanche-hazard: granular avalanche simulation (Savage-Hutter, Wang & Li 2017) "
+        "and hazard maps"};
+    app.name("avalanche-hazard");
+    app.set_version_flag("--version", software_version());
+    app.add_flag("-q,--quiet", global.quiet, "Only warnings and errors; no progress bar");
+    app.add_flag("-v,--verbose", global.verbose, "Debug log lines");
+    app.add_flag("--debug", global.debug, "Let errors escape as exceptions (for a stack trace)");
+    app.require_subcommand(1);
+    app.footer("Run 'avalanche-hazard run --help' for the run options and examples; docs/cli.md.");
+
+    std::map<std::string, detail::Command> commands;
+    commands["run"] = detail::add_run_command(app, global);
+    commands["version"] = detail::add_version_command(app);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        print_error(e.what());
+        return static_cast<int>(ExitCode::usage);
+    }
+
+    detail::configure_logging(global.quiet     ? detail::Verbosity::quiet
+                              : global.verbose ? detail::Verbosity::verbose
+                                               : detail::Verbosity::normal);
+    const detail::Command& command = commands.at(app.get_subcommands().front()->get_name());
+    if (global.debug) return command();
+    try {
+        return command();
+    } catch (const Error& e) {
+        print_error(e.what());
+        return static_cast<int>(e.code());
+    } catch (const std::exception& e) {
+        print_error(std::string("internal error: ") + e.what());
+        return static_cast<int>(ExitCode::internal);
+    }
+}
+
+int run_cli(const std::vector<std::string>& args) {
+    std::vector<std::string> copy = args;
+    std::vector<char*> argv;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    return run_cli(static_cast<int>(copy.size()), argv.data());
+}
+
+}  // namespace avalanche

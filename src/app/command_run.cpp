@@ -1,0 +1,150 @@
+// `avalanche-hazard run`: scenario (file < flags) -> prepared scene -> simulation ->
+// DIR/results.h5 + DIR/summary.json.
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "avalanche/app/prepared_scene.hpp"
+#include "avalanche/app/progress_bar.hpp"
+#include "avalanche/app/scenario_overrides.hpp"
+#include "avalanche/core/error.hpp"
+#include "avalanche/io/effective_config.hpp"
+#include "avalanche/io/enum_names.hpp"
+#include "commands.hpp"
+#include "interrupt.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace avalanche::detail {
+
+namespace {
+
+struct RunArguments {
+    std::optional<std::string> scenario;
+    std::string out;
+    bool overwrite = false;
+    int threads = 0;
+    ScenarioOverrides overrides;
+};
+
+constexpr const char* kOverrideGroup = "Scenario overrides (defaults < scenario file < flags)";
+
+template <class T>
+std::string text(T v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+// Adds a flag that fills an optional; the default shown in --help is the built-in one.
+template <class T>
+void add_override(CLI::App& cmd, const std::string& name, std::optional<T>& target,
+                  const std::string& help, const std::string& default_text = "") {
+    auto* opt = cmd.add_option_function<T>(
+        name, [&target](const T& v) { target = v; }, help);
+    opt->group(kOverrideGroup);
+    if (!default_text.empty()) opt->default_str(default_text);
+}
+
+void add_scenario_flags(CLI::App& cmd, ScenarioOverrides& o) {
+    const MaterialParams m;
+    const NumericsParams n;
+    cmd.add_option("--dem", o.dem, "DEM file(s) (repeatable); makes a DEM terrain (terrain.dem)")
+        ->group(kOverrideGroup);
+    add_override(
+        cmd, "--release", o.release,
+        "Release polygons (.gpkg, .shp, .geojson) or thickness raster (.tif, .tiff, .asc, .vrt)");
+    add_override(cmd, "--thickness", o.thickness, "Release thickness, bed-normal (m)");
+    add_override(cmd, "--thickness-field", o.thickness_field,
+                 "Polygon attribute holding the thickness");
+    add_override(cmd, "--volume", o.volume, "Released volume (m^3); scales the thickness");
+    add_override(cmd, "--crs", o.crs, "CRS of the DEM, e.g. EPSG:32633 (terrain.crs)");
+    add_override(cmd, "--points", o.points, "Monitoring points CSV (points.file)");
+    add_override(cmd, "--phi", o.phi, "Internal friction angle (deg)", text(m.phi_deg));
+    add_override(cmd, "--delta", o.delta, "Bed friction angle (deg)", text(m.delta_deg));
+    add_override(cmd, "--density", o.density, "Bulk density (kg/m^3)", text(m.density));
+    add_override(cmd, "--earth-pressure", o.earth_pressure,
+                 "Earth pressure model: savage-hutter|isotropic",
+                 enum_name(kEarthPressureNames, m.earth_pressure));
+    add_override(cmd, "--cell-size", o.cell_size, "Cell size (m); 0 = DEM resolution", "0");
+    add_override(cmd, "--t-end", o.t_end, "End time (s)", text(n.t_end));
+    add_override(cmd, "--cfl", o.cfl, "Courant number in (0, 0.5]", text(n.cfl));
+    add_override(cmd, "--scheme", o.scheme, "Flux scheme: waf|godunov",
+                 enum_name(kSchemeNames, n.scheme));
+    add_override(cmd, "--limiter", o.limiter, "WAF limiter: van_leer|superbee|van_albada|minmod",
+                 enum_name(kLimiterNames, n.limiter));
+    add_override(cmd, "--output-interval", o.output_interval, "Time between snapshots (s)",
+                 text(n.output_interval));
+}
+
+// The progress callback: a GDAL-style bar when stderr is a terminal, and the signal check.
+std::function<bool(double)> make_progress(bool show_bar) {
+    auto bar = show_bar ? std::make_shared<TextProgressBar>(std::cerr) : nullptr;
+    return [bar](double fraction) {
+        if (bar) bar->update(fraction);
+        return !InterruptGuard::requested();
+    };
+}
+
+int execute(const RunArguments& args, const GlobalOptions& global) {
+    const Scenario scenario = assemble_scenario(args.scenario, args.overrides);
+    spdlog::debug("effective configuration: {}", effective_config(scenario).dump());
+    if (args.threads < 0) throw ConfigError("--threads", "expected a number of threads >= 1");
+#ifdef _OPENMP
+    if (args.threads > 0) omp_set_num_threads(args.threads);
+#endif
+    prepare_output_folder(args.out, args.overwrite);
+    const PreparedScene scene = prepare_scene(scenario);
+
+    InterruptGuard interrupt;
+    RunOptions options;
+    options.out_dir = args.out;
+    options.command_line = global.command_line;
+    options.progress = make_progress(!global.quiet && ::isatty(::fileno(stderr)));
+    const RunOutcome outcome = execute_scene(scene, scenario, options);
+    if (!global.quiet)
+        std::cout << "results: " << outcome.results_path << "\nsummary: " << outcome.summary_path
+                  << "\n";
+    if (outcome.stats.end_reason == EndReason::interrupted)
+        throw Error(ExitCode::interrupted,
+                    "interrupted at t = " + std::to_string(outcome.stats.simulated_time) +
+                        " s; the results so far are in " + args.out);
+    return 0;
+}
+
+}  // namespace
+
+Command add_run_command(CLI::App& app, const GlobalOptions& global) {
+    auto args = std::make_shared<RunArguments>();
+    CLI::App* cmd =
+        app.add_subcommand("run", "Simulate a scenario and write results.h5 and summary.json");
+    cmd->fallthrough();  // --quiet, --verbose, --debug may follow the subcommand
+    cmd->add_option_function<std::string>(
+        "--scenario", [args](const std::string& v) { args->scenario = v; },
+        "Scenario file (TOML); its paths are relative to its folder");
+    cmd->add_option("--out", args->out, "Output folder (created if missing)")->required();
+    cmd->add_flag("--overwrite", args->overwrite, "Replace results already in the output folder");
+    cmd->add_option("--threads", args->threads, "OpenMP threads (default: all cores)")
+        ->check(CLI::PositiveNumber);
+    add_scenario_flags(*cmd, args->overrides);
+    // clang-format off
+    cmd->footer(
+        "Examples:\n"
+        "  avalanche-hazard run --scenario scenarios/parametric_chute/scenario.toml --out out/chute\n"
+        "  avalanche-hazard run --scenario scenarios/koch1994/scenario.toml --out out/koch \\\n"
+        "      --delta 35 --scheme godunov\n"
+        "  avalanche-hazard run --dem area.tif --release release.gpkg --thickness 1.5 --out out/area\n"
+        "Exit codes: 0 ok, 2 bad flag or scenario value, 3 unreadable input, 4 output folder\n"
+        "problem, 5 numerical failure, 6 interrupted, 70 internal error (docs/cli.md).");
+    // clang-format on
+    return [args, &global] { return execute(*args, global); };
+}
+
+}  // namespace avalanche::detail

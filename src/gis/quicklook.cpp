@@ -1,0 +1,97 @@
+// Hillshade and the PNG quick-look.
+#include "avalanche/gis/quicklook.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+#include "avalanche/core/error.hpp"
+#include "orientation.hpp"
+
+namespace avalanche::gis {
+
+namespace {
+constexpr double kShadeFloor = 0.35;  // darkest terrain tone under a coloured cell
+constexpr double kOverlayOpacity = 0.85;
+}  // namespace
+
+std::vector<double> hillshade(const Grid& g, const std::vector<double>& z, double azimuth_deg,
+                              double altitude_deg) {
+    if (z.size() != g.cells()) throw Error(ExitCode::internal, "hillshade: size mismatch");
+    const double az = azimuth_deg * std::numbers::pi / 180.0;
+    const double alt = altitude_deg * std::numbers::pi / 180.0;
+    // Unit vector towards the light in (east, north, up): azimuth 315 = from north-west.
+    const double lx = std::sin(az) * std::cos(alt), ly = std::cos(az) * std::cos(alt),
+                 lz = std::sin(alt);
+    auto at = [&](int i, int j) {
+        i = std::clamp(i, 0, g.nx - 1), j = std::clamp(j, 0, g.ny - 1);
+        return z[static_cast<std::size_t>(j) * g.nx + i];
+    };
+    std::vector<double> shade(z.size());
+    for (int j = 0; j < g.ny; ++j) {
+        for (int i = 0; i < g.nx; ++i) {
+            // Horn: weighted central differences over the 3x3 window (j + 1 is north).
+            const double dzdx = ((at(i + 1, j + 1) + 2 * at(i + 1, j) + at(i + 1, j - 1)) -
+                                 (at(i - 1, j + 1) + 2 * at(i - 1, j) + at(i - 1, j - 1))) /
+                                (8.0 * g.dx);
+            const double dzdy = ((at(i - 1, j + 1) + 2 * at(i, j + 1) + at(i + 1, j + 1)) -
+                                 (at(i - 1, j - 1) + 2 * at(i, j - 1) + at(i + 1, j - 1))) /
+                                (8.0 * g.dy);
+            // Surface normal (-dz/dx, -dz/dy, 1), normalised, dotted with the light.
+            const double n = std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
+            const double s = (-dzdx * lx - dzdy * ly + lz) / n;
+            shade[static_cast<std::size_t>(j) * g.nx + i] = std::clamp(s, 0.0, 1.0);
+        }
+    }
+    return shade;
+}
+
+void write_quicklook_png(const std::string& path, const GeoGrid& geo,
+                         const std::vector<double>& values, const std::vector<double>& elevation,
+                         const ColorRamp& ramp, double nodata) {
+    detail::GdalErrorScope errors;
+    const Grid& g = geo.grid;
+    if (values.size() != g.cells() || elevation.size() != g.cells())
+        throw OutputError(path, "map and elevation sizes differ from the grid");
+    const std::vector<double> shade = hillshade(g, elevation);
+    std::vector<double> rgb[3];
+    for (auto& c : rgb) c.resize(g.cells());
+    for (std::size_t k = 0; k < g.cells(); ++k) {
+        const double grey = 255.0 * shade[k];
+        Rgba c{0, 0, 0, 0};
+        if (values[k] != nodata && std::isfinite(values[k])) c = color_at(ramp, values[k]);
+        const double a = kOverlayOpacity * c.a / 255.0;
+        const double tone = kShadeFloor + (1.0 - kShadeFloor) * shade[k];
+        const double channel[3] = {double(c.r), double(c.g), double(c.b)};
+        for (int b = 0; b < 3; ++b)
+            rgb[b][k] =
+                std::clamp(std::round(a * channel[b] * tone + (1.0 - a) * grey), 0.0, 255.0);
+    }
+    // No geotransform or CRS: a plain picture, so the PNG driver writes no .aux.xml.
+    detail::DatasetPtr mem = detail::create_mem_raster(g.nx, g.ny, 3, GDT_Byte);
+    for (int b = 0; b < 3; ++b) detail::write_solver_rows(*mem, b + 1, g, rgb[b]);
+
+    GDALDriver* png = GetGDALDriverManager()->GetDriverByName("PNG");
+    if (png == nullptr) throw OutputError(path, "GDAL has no PNG driver");
+    const std::string part = path + ".part";
+    std::error_code ec;
+    bool written = false;
+    {
+        detail::DatasetPtr out(
+            png->CreateCopy(part.c_str(), mem.get(), FALSE, nullptr, nullptr, nullptr));
+        written = out != nullptr;
+    }
+    if (!written || errors.failed()) {
+        std::filesystem::remove(part, ec);
+        throw OutputError(path, "cannot write the PNG" + errors.reason());
+    }
+    std::filesystem::rename(part, path, ec);
+    if (ec) {
+        const std::string why = ec.message();
+        std::filesystem::remove(part, ec);
+        throw OutputError(path, "cannot rename " + part + " into place: " + why);
+    }
+}
+
+}  // namespace avalanche::gis

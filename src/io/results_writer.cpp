@@ -1,0 +1,195 @@
+#include "avalanche/io/results_writer.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+#include <vector>
+
+#include "avalanche/core/error.hpp"
+#include "avalanche/io/effective_config.hpp"
+#include "hdf5_handles.hpp"
+
+namespace avalanche {
+
+using detail::h5_check;
+using detail::h5_take;
+using detail::Hid;
+using detail::write_attribute;
+
+namespace {
+
+// Tiles of at most 256 x 256 cells (512 KiB) per chunk: big enough for gzip, small
+// enough for HDF5's default 1 MiB chunk cache.
+constexpr hsize_t kChunkTile = 256;
+constexpr unsigned kGzipLevel = 4;  // most of a snapshot is zeros; higher levels gain little
+
+// Writes the configuration as root attributes: material and numerics keys bare (as the
+// names users know: phi_deg, cfl, ...), other sections as "section.key".
+void write_config_attributes(hid_t root, const nlohmann::json& config, const std::string& file) {
+    for (const auto& [section, values] : config.items()) {
+        if (!values.is_object()) continue;
+        const bool bare = section == "material" || section == "numerics";
+        for (const auto& [key, v] : values.items()) {
+            if (bare && key == "h_min") continue;  // written as the effective value instead
+            const std::string name = bare ? key : section + "." + key;
+            if (v.is_number_integer()) {
+                write_attribute(root, name, v.get<std::int64_t>(), file);
+            } else if (v.is_number()) {
+                write_attribute(root, name, v.get<double>(), file);
+            } else if (v.is_string()) {
+                write_attribute(root, name, v.get<std::string>(), file);
+            } else if (v.is_array() && std::all_of(v.begin(), v.end(),
+                                                   [](const auto& e) { return e.is_number(); })) {
+                const auto numbers = v.get<std::vector<double>>();
+                write_attribute(root, name, std::span<const double>(numbers), file);
+            } else if (!v.is_null()) {
+                write_attribute(root, name, v.dump(), file);
+            }
+        }
+        if (bare && section == "numerics" && values.contains("h_min"))
+            write_attribute(root, "h_min_setting", values["h_min"].get<double>(), file);
+    }
+}
+
+}  // namespace
+
+struct ResultsWriter::Impl {
+    std::string part_path;
+    Grid grid;
+    Hid file;
+    Hid time, h, u, v;
+    std::size_t snapshots = 0;
+    std::vector<double> buf_h, buf_u, buf_v;
+
+    Hid create_field(const char* name, const char* units, const char* description) {
+        const hsize_t ny = static_cast<hsize_t>(grid.ny), nx = static_cast<hsize_t>(grid.nx);
+        const hsize_t dims[3] = {0, ny, nx};
+        const hsize_t maxdims[3] = {H5S_UNLIMITED, ny, nx};
+        const hsize_t chunk[3] = {1, std::min(ny, kChunkTile), std::min(nx, kChunkTile)};
+        const std::string what = std::string("create the dataset ") + name;
+        Hid space = h5_take(H5Screate_simple(3, dims, maxdims), H5Sclose, part_path, what);
+        Hid dcpl = h5_take(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, part_path, what);
+        h5_check(H5Pset_chunk(dcpl.get(), 3, chunk), part_path, what);
+        h5_check(H5Pset_shuffle(dcpl.get()), part_path, what);
+        h5_check(H5Pset_deflate(dcpl.get(), kGzipLevel), part_path, what);
+        Hid ds = h5_take(H5Dcreate2(file.get(), name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                                    dcpl.get(), H5P_DEFAULT),
+                         H5Dclose, part_path, what);
+        write_attribute(ds.get(), "units", std::string(units), part_path);
+        write_attribute(ds.get(), "description", std::string(description), part_path);
+        return ds;
+    }
+
+    Hid create_time() {
+        const hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {256};
+        const std::string what = "create the dataset time";
+        Hid space = h5_take(H5Screate_simple(1, dims, maxdims), H5Sclose, part_path, what);
+        Hid dcpl = h5_take(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, part_path, what);
+        h5_check(H5Pset_chunk(dcpl.get(), 1, chunk), part_path, what);
+        Hid ds = h5_take(H5Dcreate2(file.get(), "time", H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                                    dcpl.get(), H5P_DEFAULT),
+                         H5Dclose, part_path, what);
+        write_attribute(ds.get(), "units", std::string("s"), part_path);
+        write_attribute(ds.get(), "description", std::string("simulated time of each snapshot"),
+                        part_path);
+        return ds;
+    }
+
+    // Appends one record (rank 1 or 3) at index `snapshots` along the first axis.
+    void append(const Hid& ds, int rank, const double* data) {
+        const std::string what = "append a snapshot";
+        hsize_t extent[3] = {snapshots + 1, static_cast<hsize_t>(grid.ny),
+                             static_cast<hsize_t>(grid.nx)};
+        h5_check(H5Dset_extent(ds.get(), extent), part_path, what);
+        Hid fspace = h5_take(H5Dget_space(ds.get()), H5Sclose, part_path, what);
+        const hsize_t start[3] = {snapshots, 0, 0};
+        hsize_t count[3] = {1, extent[1], extent[2]};
+        h5_check(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
+                 part_path, what);
+        Hid mspace = h5_take(H5Screate_simple(rank, count, nullptr), H5Sclose, part_path, what);
+        h5_check(
+            H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, mspace.get(), fspace.get(), H5P_DEFAULT, data),
+            part_path, what);
+    }
+};
+
+ResultsWriter::ResultsWriter(std::string final_path, const Grid& grid, const ResultsMetadata& meta)
+    : final_path_(std::move(final_path)), impl_(std::make_unique<Impl>()) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become OutputError, not stack dumps
+    Impl& w = *impl_;
+    w.part_path = final_path_ + ".part";
+    w.grid = grid;
+    w.file = h5_take(H5Fcreate(w.part_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                     H5Fclose, w.part_path, "create the file");
+    const hid_t root = w.file.get();
+    const std::string& f = w.part_path;
+    write_attribute(root, "geotransform", std::span<const double>(meta.geotransform), f);
+    write_attribute(root, "crs_wkt", meta.crs_wkt, f);
+    write_attribute(root, "frame", std::string(meta.frame == Frame::chute ? "chute" : "dem"), f);
+    write_attribute(root, "thickness", std::string("bed-normal"), f);
+    write_attribute(root, "gravity", meta.gravity, f);
+    write_attribute(root, "h_min", meta.h_min, f);
+    write_attribute(root, "nx", static_cast<std::int64_t>(grid.nx), f);
+    write_attribute(root, "ny", static_cast<std::int64_t>(grid.ny), f);
+    write_config_attributes(root, meta.config, f);
+    write_attribute(root, "config_json", meta.config.dump(), f);
+    write_attribute(root, "config_hash", meta.config_hash, f);
+    write_attribute(root, "software_version", software_version(), f);
+
+    w.time = w.create_time();
+    w.h = w.create_field("h", "m", "flow thickness normal to the bed");
+    w.u = w.create_field("u", "m/s", "depth-averaged velocity along +x (columns)");
+    w.v = w.create_field("v", "m/s", "depth-averaged velocity along +y (towards row 0)");
+    const std::size_t n = grid.cells();
+    w.buf_h.resize(n);
+    w.buf_u.resize(n);
+    w.buf_v.resize(n);
+}
+
+ResultsWriter::~ResultsWriter() = default;
+
+std::size_t ResultsWriter::snapshots() const { return impl_->snapshots; }
+
+void ResultsWriter::on_output(const SimulationView& view) {
+    Impl& w = *impl_;
+    if (!w.file.valid()) return;
+    const int nx = w.grid.nx, ny = w.grid.ny;
+    for (int j = 0; j < ny; ++j) {
+        // Solver row j = 0 is the bottom (smallest y); dataset row 0 is the top.
+        const std::size_t out = static_cast<std::size_t>(ny - 1 - j) * static_cast<std::size_t>(nx);
+        for (int i = 0; i < nx; ++i) {
+            const double h = view.state.h(i, j);
+            const bool wet = h > 0.0;
+            w.buf_h[out + i] = h * view.terrain.normal_thickness(i, j);
+            w.buf_u[out + i] = wet ? view.state.hu(i, j) / h : 0.0;
+            w.buf_v[out + i] = wet ? view.state.hv(i, j) / h : 0.0;
+        }
+    }
+    w.append(w.h, 3, w.buf_h.data());
+    w.append(w.u, 3, w.buf_u.data());
+    w.append(w.v, 3, w.buf_v.data());
+    w.append(w.time, 1, &view.t);
+    ++w.snapshots;
+}
+
+void ResultsWriter::finish(const RunStatistics& stats) {
+    Impl& w = *impl_;
+    const hid_t root = w.file.get();
+    write_attribute(root, "end_reason", to_string(stats.end_reason), w.part_path);
+    write_attribute(root, "simulated_time", stats.simulated_time, w.part_path);
+    write_attribute(root, "steps", static_cast<std::int64_t>(stats.steps), w.part_path);
+    write_attribute(root, "snapshots", static_cast<std::int64_t>(w.snapshots), w.part_path);
+    w.time.reset();
+    w.h.reset();
+    w.u.reset();
+    w.v.reset();
+    h5_check(H5Fflush(root, H5F_SCOPE_GLOBAL), w.part_path, "flush the file");
+    w.file.reset();
+    std::error_code ec;
+    std::filesystem::rename(w.part_path, final_path_, ec);
+    if (ec)
+        throw OutputError(final_path_,
+                          "cannot move the finished results into place: " + ec.message());
+}
+
+}  // namespace avalanche

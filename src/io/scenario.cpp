@@ -1,0 +1,62 @@
+#include "avalanche/io/scenario.hpp"
+
+#include <cmath>
+
+#include "avalanche/core/error.hpp"
+
+namespace avalanche {
+
+namespace {
+
+void validate_terrain(const TerrainSpec& terrain, double cell_size) {
+    if (const auto* chute = std::get_if<ChuteGeometry>(&terrain)) {
+        validate(*chute);
+        // chute_grid refuses a cell size that is not positive or does not divide the chute.
+        (void)chute_grid(*chute, cell_size);
+        return;
+    }
+    const auto& dem = std::get<DemTerrainSpec>(terrain);
+    if (dem.dem_paths.empty()) throw ConfigError("terrain.dem", "expected one or more DEM files");
+    for (const auto& p : dem.dem_paths)
+        if (p.empty())
+            throw ConfigError("terrain.dem", "expected a file name, got an empty string");
+}
+
+void validate_release(const ReleaseSpec& release, bool chute) {
+    if (const auto* shape = std::get_if<ReleaseShape>(&release)) {
+        validate(*shape);
+        return;
+    }
+    if (const auto* poly = std::get_if<PolygonReleaseSpec>(&release)) {
+        if (chute)
+            throw ConfigError("release.polygons",
+                              "a polygon release needs a DEM terrain (terrain.type = \"dem\")");
+        if (poly->path.empty()) throw ConfigError("release.polygons", "expected a file name");
+        if (poly->thickness && (!std::isfinite(*poly->thickness) || *poly->thickness <= 0.0))
+            throw ConfigError("release.thickness", "expected a positive thickness in metres");
+        if (poly->volume && (!std::isfinite(*poly->volume) || *poly->volume <= 0.0))
+            throw ConfigError("release.volume", "expected a positive volume in m^3");
+        return;
+    }
+    const auto& raster = std::get<RasterReleaseSpec>(release);
+    if (chute)
+        throw ConfigError("release.raster",
+                          "a raster release needs a DEM terrain (terrain.type = \"dem\")");
+    if (raster.path.empty()) throw ConfigError("release.raster", "expected a file name");
+}
+
+}  // namespace
+
+void validate(const Scenario& s) {
+    validate(s.material);
+    validate(s.numerics);
+    validate(s.output);
+    if (!std::isfinite(s.cell_size) || s.cell_size < 0.0)
+        throw ConfigError("numerics.cell_size", "expected a cell size >= 0 m (0 = automatic)");
+    validate_terrain(s.terrain, s.cell_size);
+    validate_release(s.release, is_chute(s));
+    if (s.points && s.points->path.empty())
+        throw ConfigError("points.file", "expected a file name");
+}
+
+}  // namespace avalanche

@@ -1,0 +1,107 @@
+// Precedence defaults < scenario file < flags, and which name an error carries.
+#include <gtest/gtest.h>
+
+#include "avalanche/app/scenario_overrides.hpp"
+#include "avalanche/core/error.hpp"
+#include "cli_test_support.hpp"
+
+namespace avalanche {
+namespace {
+
+template <class F>
+std::string config_error(F f) {
+    try {
+        f();
+    } catch (const ConfigError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(ScenarioOverrides, FlagsWinOverTheFileAndUnsetFlagsKeepIt) {
+    test::ScratchDir dir("precedence");
+    const std::string file = dir.write("scenario.toml", test::kSmallChute);
+    ScenarioOverrides o;
+    o.cfl = 0.45;
+    o.delta = 15.0;
+    o.cell_size = 0.25;
+    const Scenario s = assemble_scenario(file, o);
+    EXPECT_EQ(s.numerics.cfl, 0.45);
+    EXPECT_EQ(s.material.delta_deg, 15.0);
+    EXPECT_EQ(s.cell_size, 0.25);
+    EXPECT_EQ(s.material.phi_deg, 35.0);                      // file
+    EXPECT_EQ(s.numerics.t_end, 0.5);                         // file
+    EXPECT_EQ(s.numerics.limiter, NumericsParams{}.limiter);  // default
+}
+
+TEST(ScenarioOverrides, ErrorsNameTheFlagWhenAFlagSetTheValue) {
+    test::ScratchDir dir("naming");
+    const std::string file = dir.write("scenario.toml", test::kSmallChute);
+    ScenarioOverrides o;
+    o.cell_size = 0.3;  // does not divide 10 m x 4 m
+    auto m = config_error([&] { assemble_scenario(file, o); });
+    EXPECT_EQ(m.rfind("--cell-size: expected a cell size that divides", 0), 0u) << m;
+    // delta > phi where only phi came from a flag: the key is delta_deg, from the file.
+    o = {};
+    o.phi = 15.0;
+    m = config_error([&] { assemble_scenario(file, o); });
+    EXPECT_EQ(m.rfind(file + ": material.delta_deg:", 0), 0u) << m;
+}
+
+TEST(ScenarioOverrides, FlagsThatDoNotFitTheScenarioAreRefused) {
+    Scenario s;  // chute with a cap
+    ScenarioOverrides o;
+    o.thickness = 1.0;
+    EXPECT_EQ(config_error([&] { apply_overrides(s, o); }).rfind("--thickness: a cap release", 0),
+              0u);
+    o = {};
+    o.volume = 10.0;
+    EXPECT_EQ(
+        config_error([&] { apply_overrides(s, o); }).rfind("--volume: applies to a polygon", 0),
+        0u);
+    o = {};
+    o.crs = "EPSG:2056";
+    EXPECT_EQ(config_error([&] { apply_overrides(s, o); }).rfind("--crs: applies to a DEM", 0), 0u);
+    o = {};
+    o.earth_pressure = "rankine";
+    EXPECT_EQ(
+        config_error([&] { apply_overrides(s, o); }).rfind("--earth-pressure: expected one of", 0),
+        0u);
+}
+
+TEST(ScenarioOverrides, DemAndReleaseFlagsMakeADemScenario) {
+    ScenarioOverrides o;
+    o.dem = {"a.tif", "b.tif"};
+    o.release = "thickness.TIF";
+    o.crs = "EPSG:32633";
+    Scenario s = assemble_scenario(std::nullopt, o);
+    EXPECT_EQ(std::get<DemTerrainSpec>(s.terrain).dem_paths, o.dem);
+    EXPECT_EQ(std::get<DemTerrainSpec>(s.terrain).crs, "EPSG:32633");
+    EXPECT_EQ(std::get<RasterReleaseSpec>(s.release).path, "thickness.TIF");
+
+    o.release = "release.gpkg";
+    o.crs.reset();
+    o.thickness = 2.0;
+    o.thickness_field = "d";
+    o.volume = 5e4;
+    o.points = "points.csv";
+    s = assemble_scenario(std::nullopt, o);
+    const auto& p = std::get<PolygonReleaseSpec>(s.release);
+    EXPECT_EQ(p.path, "release.gpkg");
+    EXPECT_EQ(p.thickness, 2.0);
+    EXPECT_EQ(p.thickness_field, "d");
+    EXPECT_EQ(p.volume, 5e4);
+    ASSERT_TRUE(s.points.has_value());
+    EXPECT_EQ(s.points->path, "points.csv");
+
+    o.volume = -1.0;
+    EXPECT_EQ(config_error([&] { assemble_scenario(std::nullopt, o); }).rfind("--volume:", 0), 0u);
+    ScenarioOverrides no_release;
+    no_release.dem = {"a.tif"};
+    EXPECT_EQ(
+        config_error([&] { assemble_scenario(std::nullopt, no_release); }).rfind("--release:", 0),
+        0u);
+}
+
+}  // namespace
+}  // namespace avalanche

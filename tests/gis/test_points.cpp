@@ -1,0 +1,85 @@
+// Monitoring points from CSV and OGR layers.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "avalanche/core/error.hpp"
+#include "avalanche/gis/points.hpp"
+#include "gis_test_support.hpp"
+
+namespace avalanche::gis {
+namespace {
+
+using testing::expect_error;
+using testing::TempDir;
+
+// A 100 x 80 grid of 10 m cells in UTM 32N.
+GeoGrid utm_grid() {
+    return GeoGrid{Grid{100, 80, 10.0, 10.0, 600000.0, 5200000.0}, utm_crs_wkt_for(9.0, 47.0)};
+}
+
+TEST(Points, CsvInTheGridCrs) {
+    TempDir tmp;
+    std::ofstream(tmp.file("p.csv")) << "# monitoring points\nname, x, y, note\n"
+                                     << "top,600005,5200795,north-west corner cell\n"
+                                     << "\"fan\",600995.5,5200000.1,south-east\n";
+    const auto p = read_points(tmp.file("p.csv"), "", utm_grid());
+    ASSERT_EQ(p.size(), 2u);
+    EXPECT_EQ(p[0].name, "top");
+    EXPECT_EQ(p[0].i, 0);
+    EXPECT_EQ(p[0].j, 79);  // the northern row
+    EXPECT_EQ(p[1].name, "fan");
+    EXPECT_EQ(p[1].i, 99);
+    EXPECT_EQ(p[1].j, 0);
+}
+
+TEST(Points, CsvInAnotherCrsIsReprojected) {
+    TempDir tmp;
+    const GeoGrid geo = utm_grid();
+    // The grid centre (600500, 5200400) in UTM 32N is 10.3206878 E, 46.9495113 N
+    // (gdaltransform).
+    std::ofstream(tmp.file("p.csv")) << "name,x,y\ncentre,10.3206878,46.9495113\n";
+    const auto p = read_points(tmp.file("p.csv"), "EPSG:4326", geo);
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_NEAR(p[0].x, 600500.0, 0.05);
+    EXPECT_NEAR(p[0].y, 5200400.0, 0.05);
+}
+
+TEST(Points, GeoPackageFromAvaKot) {
+    // The avaKot grid (EPSG:31287 extent) is enough: reuse its numbers without the DEM.
+    const GeoGrid geo{
+        Grid{439, 517, 4.997688906601, 4.997688906601, 176973.437998359208, 376237.836376162944},
+        "EPSG:31287"};
+    const auto p = read_points(testing::avaKot("avaKot_points.gpkg"), "", geo);
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].name, "point_1");  // the `id` field is empty: named after the FID
+    EXPECT_NEAR(p[0].x, 178342.713179185, 1e-6);
+    EXPECT_NEAR(p[0].y, 377698.857655861, 1e-6);
+    EXPECT_EQ(p[0].i, static_cast<int>((178342.713179185 - geo.grid.x0) / geo.grid.dx));
+    EXPECT_EQ(p[0].j, static_cast<int>((377698.857655861 - geo.grid.y0) / geo.grid.dy));
+}
+
+TEST(Points, ProblemsNameTheLineOrPoint) {
+    TempDir tmp;
+    const GeoGrid geo = utm_grid();
+    std::ofstream(tmp.file("out.csv")) << "name,x,y\na,600100,5200100\nfar,700000,5200100\n";
+    expect_error<InputError>([&] { read_points(tmp.file("out.csv"), "", geo); },
+                             {"out.csv", "line 3", "'far'", "outside the grid"});
+    std::ofstream(tmp.file("bad.csv")) << "name,x,y\na,600100,5200100\nb,600100\n";
+    expect_error<InputError>([&] { read_points(tmp.file("bad.csv"), "", geo); },
+                             {"bad.csv", "line 3", "2 columns"});
+    std::ofstream(tmp.file("nan.csv")) << "name,x,y\na,600100,north\n";
+    expect_error<InputError>([&] { read_points(tmp.file("nan.csv"), "", geo); },
+                             {"nan.csv", "line 2", "numbers"});
+    std::ofstream(tmp.file("dup.csv")) << "name,x,y\na,600100,5200100\na,600200,5200100\n";
+    expect_error<InputError>([&] { read_points(tmp.file("dup.csv"), "", geo); },
+                             {"dup.csv", "line 3", "duplicate", "'a'"});
+    std::ofstream(tmp.file("head.csv")) << "id;east;north\n";
+    expect_error<InputError>([&] { read_points(tmp.file("head.csv"), "", geo); },
+                             {"head.csv", "line 1", "name,x,y"});
+    expect_error<ConfigError>([&] { read_points(tmp.file("dup.csv"), "EPSG:bogus", geo); },
+                              {"points_crs"});
+}
+
+}  // namespace
+}  // namespace avalanche::gis

@@ -1,0 +1,201 @@
+// COG GeoTIFFs, QGIS styles and PNG quick-looks.
+#include <cpl_minixml.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "avalanche/core/error.hpp"
+#include "avalanche/gis/quicklook.hpp"
+#include "avalanche/gis/raster_writer.hpp"
+#include "avalanche/gis/style.hpp"
+#include "gis_test_support.hpp"
+
+namespace avalanche::gis {
+namespace {
+
+using testing::expect_error;
+using testing::TempDir;
+
+GeoGrid utm_grid(int nx, int ny) {
+    return GeoGrid{Grid{nx, ny, 5.0, 5.0, 600000.0, 5200000.0}, utm_crs_wkt_for(9.0, 47.0)};
+}
+
+TEST(WriteGeotiff, CogWithCrsNodataUnitsAndDescription) {
+    TempDir tmp;
+    const GeoGrid geo = utm_grid(600, 520);  // large enough for overviews
+    std::vector<double> depth(geo.grid.cells(), -9999.0);
+    for (std::size_t k = 0; k < depth.size(); k += 3)
+        depth[k] = 0.001 * static_cast<double>(k % 997);
+    BandInfo band{"maximum flow depth (bed-normal)", "m", -9999.0, {{"THICKNESS", "bed-normal"}}};
+    write_geotiff(tmp.file("max_depth.tif"), geo, depth, band);
+
+    GDALAllRegister();
+    GDALDataset* ds = GDALDataset::Open(tmp.file("max_depth.tif").c_str(), GDAL_OF_RASTER);
+    ASSERT_NE(ds, nullptr);
+    EXPECT_STREQ(ds->GetMetadataItem("LAYOUT", "IMAGE_STRUCTURE"), "COG");
+    EXPECT_STREQ(ds->GetMetadataItem("COMPRESSION", "IMAGE_STRUCTURE"), "DEFLATE");
+    OGRSpatialReference srs(*ds->GetSpatialRef());
+    srs.AutoIdentifyEPSG();
+    EXPECT_STREQ(srs.GetAuthorityCode(nullptr), "32632");
+    double gt[6];
+    ds->GetGeoTransform(gt);
+    EXPECT_DOUBLE_EQ(gt[0], 600000.0);
+    EXPECT_DOUBLE_EQ(gt[3], 5200000.0 + 520 * 5.0);
+    EXPECT_DOUBLE_EQ(gt[5], -5.0);
+    GDALRasterBand* b = ds->GetRasterBand(1);
+    EXPECT_EQ(b->GetRasterDataType(), GDT_Float32);
+    int has_nodata = 0;
+    EXPECT_DOUBLE_EQ(b->GetNoDataValue(&has_nodata), -9999.0);
+    EXPECT_TRUE(has_nodata);
+    EXPECT_STREQ(b->GetDescription(), "maximum flow depth (bed-normal)");
+    EXPECT_STREQ(b->GetUnitType(), "m");
+    EXPECT_STREQ(b->GetMetadataItem("THICKNESS"), "bed-normal");
+    EXPECT_GT(b->GetOverviewCount(), 0);
+    GDALClose(ds);
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("max_depth.tif.part")));
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("max_depth.tif.aux.xml")));
+}
+
+TEST(WriteGeotiff, ClassMapAsBytes) {
+    TempDir tmp;
+    const GeoGrid geo = utm_grid(8, 6);
+    std::vector<double> classes(geo.grid.cells(), 0.0);
+    classes[47] = 3.0;
+    write_geotiff(tmp.file("hazard_class.tif"), geo, classes,
+                  BandInfo{"hazard class", "", 255.0, {}}, SampleType::uint8);
+    const auto rows = testing::read_raw_rows(tmp.file("hazard_class.tif"));
+    EXPECT_DOUBLE_EQ(rows[7], 3.0);  // solver (7, 5) = GeoTIFF row 0, column 7
+    classes[1] = 2.5;
+    expect_error<OutputError>(
+        [&] {
+            write_geotiff(tmp.file("c.tif"), geo, classes, BandInfo{"c", "", 255.0, {}},
+                          SampleType::uint8);
+        },
+        {"c.tif", "non-integer", "i=1, j=0"});
+}
+
+TEST(WriteGeotiff, NanIsRefusedAndNoFileIsLeft) {
+    TempDir tmp;
+    const GeoGrid geo = utm_grid(4, 3);
+    std::vector<double> v(geo.grid.cells(), 1.0);
+    v[1 * 4 + 2] = std::numeric_limits<double>::quiet_NaN();
+    expect_error<OutputError>(
+        [&] {
+            write_geotiff(tmp.file("bad.tif"), geo, v, BandInfo{"v", "m", -9999.0, {}});
+        },
+        {"bad.tif", "non-finite", "i=2, j=1"});
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("bad.tif")));
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("bad.tif.part")));
+    v[6] = 1.0;
+    expect_error<OutputError>(
+        [&] { write_geotiff(tmp.file("no/such/dir.tif"), geo, v, BandInfo{}); },
+        {"dir.tif", "does not exist"});
+}
+
+// Children of `node` named `name`, recursively.
+void collect(CPLXMLNode* node, const std::string& name, std::vector<CPLXMLNode*>& out) {
+    for (CPLXMLNode* c = node; c != nullptr; c = c->psNext) {
+        if (c->eType == CXT_Element && name == c->pszValue) out.push_back(c);
+        collect(c->psChild, name, out);
+    }
+}
+
+TEST(WriteQml, PseudocolorClassesAreValidXml) {
+    TempDir tmp;
+    write_qml(tmp.file("max_depth.qml"), depth_ramp());
+    CPLXMLNode* root = CPLParseXMLFile(tmp.file("max_depth.qml").c_str());
+    ASSERT_NE(root, nullptr);
+    std::vector<CPLXMLNode*> shader, items;
+    collect(root, "colorrampshader", shader);
+    ASSERT_EQ(shader.size(), 1u);
+    EXPECT_STREQ(CPLGetXMLValue(shader[0], "colorRampType", ""), "DISCRETE");
+    collect(root, "item", items);
+    std::vector<std::string> values, labels;
+    for (CPLXMLNode* n : items) {
+        values.push_back(CPLGetXMLValue(n, "value", ""));
+        labels.push_back(CPLGetXMLValue(n, "label", ""));
+    }
+    // Upper bounds of the classes (QGIS "Discrete"): below 0.1 transparent, ..., > 5 m.
+    EXPECT_EQ(values, (std::vector<std::string>{"0.1", "0.5", "1", "2", "5", "inf"}));
+    EXPECT_EQ(labels.back(), "> 5 m");
+    EXPECT_EQ(labels[1], "0.1 - 0.5 m");
+    EXPECT_STREQ(CPLGetXMLValue(items[0], "alpha", ""), "0");
+    CPLDestroyXMLNode(root);
+}
+
+TEST(WriteQml, HazardClassesArePalettedWithLegendLabels) {
+    TempDir tmp;
+    write_qml(tmp.file("hazard_class.qml"), hazard_class_palette());
+    CPLXMLNode* root = CPLParseXMLFile(tmp.file("hazard_class.qml").c_str());
+    ASSERT_NE(root, nullptr);
+    std::vector<CPLXMLNode*> renderer, entries;
+    collect(root, "rasterrenderer", renderer);
+    ASSERT_EQ(renderer.size(), 1u);
+    EXPECT_STREQ(CPLGetXMLValue(renderer[0], "type", ""), "paletted");
+    collect(root, "paletteEntry", entries);
+    ASSERT_EQ(entries.size(), 4u);
+    const char* expected[] = {"none", "low", "medium", "high"};
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_EQ(std::atoi(CPLGetXMLValue(entries[k], "value", "-1")), k);
+        EXPECT_STREQ(CPLGetXMLValue(entries[k], "label", ""), expected[k]);
+    }
+    CPLDestroyXMLNode(root);
+}
+
+TEST(Style, DiscreteClassesMatchQgis) {
+    const ColorRamp r = pressure_ramp();  // breaks 1, 3, 10, 30, 100 kPa
+    EXPECT_EQ(color_at(r, 0.5).a, 0);     // below the first break: not drawn
+    EXPECT_EQ(color_at(r, 1.0).a, 0);     // QGIS: 1.0 belongs to the item "<= 1"
+    EXPECT_EQ(color_at(r, 2.0).r, r.stops[0].color.r);
+    EXPECT_EQ(color_at(r, 30.0).g, r.stops[2].color.g);
+    EXPECT_EQ(color_at(r, 500.0).b, r.stops[4].color.b);
+    EXPECT_EQ(color_at(arrival_time_ramp(60.0), 0.0).a, 255);  // release cells at t = 0
+}
+
+TEST(Quicklook, HillshadeFacesTheNorthWestLight) {
+    const Grid g{5, 5, 10.0, 10.0, 0.0, 0.0};
+    std::vector<double> flat(g.cells(), 100.0), to_se(g.cells()), to_nw(g.cells());
+    for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 5; ++i) {
+            to_se[j * 5 + i] = 10.0 * i - 10.0 * j;  // rises to the south-east: faces NW
+            to_nw[j * 5 + i] = -10.0 * i + 10.0 * j;
+        }
+    EXPECT_NEAR(hillshade(g, flat)[12], std::sin(M_PI / 4), 1e-12);
+    EXPECT_GT(hillshade(g, to_se)[12], 0.95);
+    EXPECT_LT(hillshade(g, to_nw)[12], 0.05);
+}
+
+TEST(Quicklook, PngIsColouredWhereTheMapHasValues) {
+    TempDir tmp;
+    const GeoGrid geo = utm_grid(40, 30);
+    std::vector<double> z(geo.grid.cells()), depth(geo.grid.cells(), 0.0);
+    for (int j = 0; j < 30; ++j)
+        for (int i = 0; i < 40; ++i) z[j * 40 + i] = 2.0 * i + 3.0 * j;
+    depth[29 * 40 + 39] = 3.0;  // the north-east cell
+    write_quicklook_png(tmp.file("max_depth.png"), geo, depth, z, depth_ramp(), -9999.0);
+    GDALAllRegister();
+    GDALDataset* ds = GDALDataset::Open(tmp.file("max_depth.png").c_str(), GDAL_OF_RASTER);
+    ASSERT_NE(ds, nullptr);
+    EXPECT_STREQ(ds->GetDriver()->GetDescription(), "PNG");
+    EXPECT_GE(ds->GetRasterCount(), 3);
+    EXPECT_LE(ds->GetRasterCount(), 4);
+    EXPECT_EQ(ds->GetRasterXSize(), 40);
+    auto pixel = [&](int band, int col, int row) {
+        unsigned char v = 0;
+        EXPECT_EQ(ds->GetRasterBand(band)->RasterIO(GF_Read, col, row, 1, 1, &v, 1, 1, GDT_Byte, 0,
+                                                    0, nullptr),
+                  CE_None);
+        return int(v);
+    };
+    // Top-right pixel (north-east) is blue; the others are grey hillshade.
+    EXPECT_GT(pixel(3, 39, 0), pixel(1, 39, 0) + 30);
+    EXPECT_EQ(pixel(1, 0, 29), pixel(3, 0, 29));
+    EXPECT_EQ(pixel(1, 39, 29), pixel(2, 39, 29));
+    GDALClose(ds);
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("max_depth.png.aux.xml")));
+}
+
+}  // namespace
+}  // namespace avalanche::gis

@@ -1,0 +1,161 @@
+// results.h5 read back with the HDF5 C API: layout, units, row orientation (an
+// asymmetric release near y = 0 must land in the BOTTOM rows), times, attributes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "avalanche/core/simulation.hpp"
+#include "avalanche/io/effective_config.hpp"
+#include "avalanche/io/results_writer.hpp"
+#include "avalanche/physics/chute.hpp"
+#include "avalanche/physics/release.hpp"
+#include "io_test_support.hpp"
+
+namespace avalanche {
+namespace {
+
+struct SmallRun {
+    Scenario scenario;
+    Grid grid;
+    TerrainFields terrain;
+    Field2D release;
+    RunStatistics stats;
+    std::string path;
+};
+
+// A 10 m x 4 m chute of 0.5 m cells (20 x 8) with a box release near y = 0.
+SmallRun run_small_chute(const test::ScratchDir& dir) {
+    SmallRun r;
+    ChuteGeometry chute;
+    chute.slope_deg = 35.0;
+    chute.length = 10.0;
+    chute.width = 4.0;
+    r.scenario.terrain = chute;
+    r.scenario.release = ReleaseShape{BoxRelease{{1.0, 3.0}, {0.5, 1.5}, 0.5}};
+    r.scenario.cell_size = 0.5;
+    r.scenario.numerics.t_end = 1.0;
+    r.scenario.numerics.output_interval = 0.25;
+    r.grid = chute_grid(chute, r.scenario.cell_size);
+    r.terrain = chute_terrain(chute, r.grid, r.scenario.numerics.gravity);
+    r.release = rasterize_release(std::get<ReleaseShape>(r.scenario.release), r.grid);
+    const State initial = state_at_rest(r.grid, r.release, r.terrain);
+    const double h_min = effective_h_min(r.scenario.numerics, initial, r.terrain);
+
+    ResultsMetadata meta;
+    meta.geotransform = {0.0, 0.5, 0.0, 4.0, 0.0, -0.5};
+    meta.config = effective_config(r.scenario);
+    meta.config_hash = config_hash(meta.config);
+    meta.h_min = h_min;
+    r.path = dir.file("results.h5");
+    Simulation sim(r.grid, r.terrain, r.scenario.material, r.scenario.numerics, initial, h_min);
+    ResultsWriter writer(r.path, r.grid, meta);
+    sim.add_observer(&writer);
+    r.stats = sim.run();
+    EXPECT_TRUE(std::filesystem::exists(r.path + ".part"));
+    EXPECT_FALSE(std::filesystem::exists(r.path)) << "results.h5 must appear only when complete";
+    writer.finish(r.stats);
+    EXPECT_EQ(writer.snapshots(), 5u);
+    return r;
+}
+
+TEST(ResultsWriter, DatasetsHaveTheGridShapeAndOneRecordPerSnapshot) {
+    test::ScratchDir dir("results-shape");
+    const SmallRun r = run_small_chute(dir);
+    EXPECT_FALSE(std::filesystem::exists(r.path + ".part"));
+    for (const char* name : {"h", "u", "v"}) {
+        const auto a = test::read_h5_dataset(r.path, name);
+        ASSERT_EQ(a.dims.size(), 3u) << name;
+        EXPECT_EQ(a.dims[0], 5u) << name;
+        EXPECT_EQ(a.dims[1], 8u) << name;   // ny rows
+        EXPECT_EQ(a.dims[2], 20u) << name;  // nx columns
+    }
+    const auto time = test::read_h5_dataset(r.path, "time");
+    ASSERT_EQ(time.dims, (std::vector<hsize_t>{5}));
+    EXPECT_EQ(time.values.front(), 0.0);
+    EXPECT_DOUBLE_EQ(time.values.back(), r.stats.simulated_time);
+    for (std::size_t k = 1; k < time.values.size(); ++k) {
+        EXPECT_GT(time.values[k], time.values[k - 1]);
+        // Snapshot times are multiples of output_interval (the run ends at t_end = 1 s).
+        EXPECT_NEAR(time.values[k] / 0.25, std::round(time.values[k] / 0.25), 1e-9);
+    }
+}
+
+TEST(ResultsWriter, RowZeroIsTheTopSoAReleaseNearYZeroIsInTheBottomRows) {
+    test::ScratchDir dir("results-flip");
+    const SmallRun r = run_small_chute(dir);
+    const auto h = test::read_h5_dataset(r.path, "h");
+    const hsize_t ny = h.dims[1], nx = h.dims[2];
+    // At t = 0: dataset row (ny - 1 - j) holds solver row j, exactly.
+    for (hsize_t row = 0; row < ny; ++row)
+        for (hsize_t col = 0; col < nx; ++col)
+            EXPECT_EQ(h.at(0, row, col),
+                      r.release(static_cast<int>(col), static_cast<int>(ny - 1 - row)))
+                << "row " << row << " col " << col;
+    // The box covers y in [0.5, 1.5] m: solver rows 1-2, dataset rows 5-6 of 8.
+    EXPECT_EQ(h.at(0, 6, 3), 0.5);
+    EXPECT_EQ(h.at(0, 5, 3), 0.5);
+    EXPECT_EQ(h.at(0, 1, 3), 0.0);
+    EXPECT_EQ(h.at(0, 2, 3), 0.0);
+    // At every time the mass-weighted mean row stays in the lower half of the dataset
+    // (initially row 5.5 of 0..7; a flipped file would put it at row 1.5).
+    for (hsize_t t = 0; t < h.dims[0]; ++t) {
+        double mass = 0.0, moment = 0.0;
+        for (hsize_t row = 0; row < ny; ++row)
+            for (hsize_t col = 0; col < nx; ++col) {
+                mass += h.at(t, row, col);
+                moment += static_cast<double>(row) * h.at(t, row, col);
+            }
+        ASSERT_GT(mass, 0.0);
+        EXPECT_GT(moment / mass, 4.5) << "t index " << t;
+    }
+}
+
+TEST(ResultsWriter, VelocitiesAreZeroWhereDryAndMoveDownTheChute) {
+    test::ScratchDir dir("results-velocity");
+    const SmallRun r = run_small_chute(dir);
+    const auto h = test::read_h5_dataset(r.path, "h");
+    const auto u = test::read_h5_dataset(r.path, "u");
+    const auto v = test::read_h5_dataset(r.path, "v");
+    double max_u = 0.0;
+    for (std::size_t k = 0; k < h.values.size(); ++k) {
+        if (h.values[k] == 0.0) {
+            EXPECT_EQ(u.values[k], 0.0);
+            EXPECT_EQ(v.values[k], 0.0);
+        }
+        max_u = std::max(max_u, u.values[k]);
+    }
+    // 35 deg slope, delta 20 deg: after 1 s the front moves at several m/s along +x.
+    EXPECT_GT(max_u, 1.0);
+}
+
+TEST(ResultsWriter, RootAttributesDescribeTheRun) {
+    test::ScratchDir dir("results-attributes");
+    const SmallRun r = run_small_chute(dir);
+    EXPECT_EQ(test::read_h5_double_attribute(r.path, "geotransform"),
+              (std::vector<double>{0.0, 0.5, 0.0, 4.0, 0.0, -0.5}));
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "crs_wkt"), "");
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "frame"), "chute");
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "thickness"), "bed-normal");
+    EXPECT_EQ(test::read_h5_double_attribute(r.path, "gravity"), std::vector<double>{9.81});
+    EXPECT_EQ(test::read_h5_double_attribute(r.path, "phi_deg"), std::vector<double>{35.0});
+    EXPECT_EQ(test::read_h5_double_attribute(r.path, "delta_deg"), std::vector<double>{20.0});
+    EXPECT_EQ(test::read_h5_double_attribute(r.path, "cfl"), std::vector<double>{0.2});
+    EXPECT_EQ(test::read_h5_double_attribute(r.path, "cell_size"), std::vector<double>{0.5});
+    EXPECT_EQ(test::read_h5_double_attribute(r.path, "t_end"), std::vector<double>{1.0});
+    EXPECT_EQ(test::read_h5_double_attribute(r.path, "output_interval"), std::vector<double>{0.25});
+    // h_min is the effective value: h_min_relative x the deepest release (0.5 m).
+    EXPECT_DOUBLE_EQ(test::read_h5_double_attribute(r.path, "h_min")[0], 1e-5 * 0.5);
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "scheme"), "waf");
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "limiter"), "van_leer");
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "earth_pressure"), "savage-hutter");
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "release.shape"), "box");
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "software_version"), software_version());
+    const auto hash = test::read_h5_string_attribute(r.path, "config_hash");
+    EXPECT_EQ(hash, config_hash(effective_config(r.scenario)));
+    EXPECT_EQ(hash.size(), 16u);
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "end_reason"), "end_time");
+}
+
+}  // namespace
+}  // namespace avalanche
