@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
+#include <unistd.h>
 #include <exception>
 #include <map>
 
@@ -31,9 +33,21 @@ std::string join_command_line(int argc, char** argv) {
     return out;
 }
 
+// libgomp's default wait policy lets idle threads spin between parallel regions; the
+// solver opens several regions per step, often over small active areas, and on a
+// shared or busy machine the spinning threads stole the cores the work needed
+// (5-90x slower runs, docs/performance.md). The policy is read when the OpenMP
+// runtime loads, so it is set by re-executing once, unless the user chose one.
+void prefer_passive_openmp_wait(char** argv) {
+    if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;
+    ::setenv("OMP_WAIT_POLICY", "passive", 1);
+    ::execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
+    prefer_passive_openmp_wait(argv);
     detail::GlobalOptions global;
     global.command_line = join_command_line(argc, argv);
     CLI::App app{
@@ -49,6 +63,7 @@ int run_cli(int argc, char** argv) {
 
     std::map<std::string, detail::Command> commands;
     commands["run"] = detail::add_run_command(app, global);
+    commands["demo"] = detail::add_demo_command(app, global);
     commands["version"] = detail::add_version_command(app);
 
     try {

@@ -26,14 +26,6 @@ namespace avalanche::detail {
 
 namespace {
 
-struct RunArguments {
-    std::optional<std::string> scenario;
-    std::string out;
-    bool overwrite = false;
-    int threads = 0;
-    ScenarioOverrides overrides;
-};
-
 constexpr const char* kOverrideGroup = "Scenario overrides (defaults < scenario file < flags)";
 
 template <class T>
@@ -93,7 +85,9 @@ std::function<bool(double)> make_progress(bool show_bar) {
     };
 }
 
-int execute(const RunArguments& args, const GlobalOptions& global) {
+}  // namespace
+
+int execute_run(const RunArguments& args, const GlobalOptions& global) {
     const Scenario scenario = assemble_scenario(args.scenario, args.overrides);
     spdlog::debug("effective configuration: {}", effective_config(scenario).dump());
     if (args.threads < 0) throw ConfigError("--threads", "expected a number of threads >= 1");
@@ -119,8 +113,6 @@ int execute(const RunArguments& args, const GlobalOptions& global) {
     return 0;
 }
 
-}  // namespace
-
 Command add_run_command(CLI::App& app, const GlobalOptions& global) {
     auto args = std::make_shared<RunArguments>();
     CLI::App* cmd =
@@ -144,7 +136,7 @@ Command add_run_command(CLI::App& app, const GlobalOptions& global) {
         "Exit codes: 0 ok, 2 bad flag or scenario value, 3 unreadable input, 4 output folder\n"
         "problem, 5 numerical failure, 6 interrupted, 70 internal error (docs/cli.md).");
     // clang-format on
-    return [args, &global] { return execute(*args, global); };
+    return [args, &global] { return execute_run(*args, global); };
 }
 
 }  // namespace avalanche::detail

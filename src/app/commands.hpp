@@ -3,7 +3,10 @@
 // its options to the CLI11 app and returns the action to run after parsing.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <optional>
 #include <string>
+
+#include "avalanche/app/scenario_overrides.hpp"
 
 namespace avalanche::detail {
 
@@ -18,6 +21,18 @@ struct GlobalOptions {
 };
 
 Command add_run_command(CLI::App& app, const GlobalOptions& global);
+// The bundled default scene (scenarios/demo_avakot) run like `run --scenario`.
+Command add_demo_command(CLI::App& app, const GlobalOptions& global);
+
+// What `run` executes; `demo` fills it with the bundled scenario.
+struct RunArguments {
+    std::optional<std::string> scenario;
+    std::string out;
+    bool overwrite = false;
+    int threads = 0;
+    ScenarioOverrides overrides;
+};
+int execute_run(const RunArguments& args, const GlobalOptions& global);
 Command add_version_command(CLI::App& app);
 
 }  // namespace avalanche::detail

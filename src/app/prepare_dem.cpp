@@ -1,13 +1,112 @@
-// Placeholder until the GIS layer provides the DEM frame: refuses DEM scenarios with a
-// clear message. Replaced by the implementation that uses avalanche_gis.
+// The DEM frame's scene preparation (MODEL.md 3.2): DEM tiles -> metric grid ->
+// slope-consistent terrain coefficients; release polygons or raster -> bed-normal
+// thickness -> initial state; monitoring points located on the grid.
 #include "avalanche/app/prepare_dem.hpp"
 
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <sstream>
+
 #include "avalanche/core/error.hpp"
+#include "avalanche/gis/dem.hpp"
+#include "avalanche/gis/points.hpp"
+#include "avalanche/gis/release.hpp"
+#include "avalanche/physics/dem_frame.hpp"
+#include "avalanche/physics/release.hpp"
 
 namespace avalanche {
 
-PreparedScene prepare_dem_scene(const Scenario&) {
-    throw ConfigError("terrain.type", "\"dem\" is not available in this build yet");
+namespace {
+
+// Bed-normal release thickness per cell, from polygons or a raster.
+std::vector<double> release_thickness(const Scenario& s, const gis::Dem& dem, std::vector<std::string>& notes,
+                                      std::vector<std::string>& files) {
+    if (const auto* poly = std::get_if<PolygonReleaseSpec>(&s.release)) {
+        gis::ReleaseOptions opts;
+        opts.thickness = poly->thickness;
+        opts.thickness_field = poly->thickness_field;
+        // Only a volume: rasterize with a unit thickness, scaled below.
+        if (!opts.thickness && opts.thickness_field.empty() && poly->volume) opts.thickness = 1.0;
+        gis::Release r = gis::rasterize_release_polygons(poly->path, dem.geo, opts);
+        gis::check_release_on_valid_dem(r, dem);
+        notes.push_back(r.description_of_steps);
+        files.push_back(poly->path);
+        return std::move(r.thickness);
+    }
+    if (const auto* raster = std::get_if<RasterReleaseSpec>(&s.release)) {
+        std::vector<double> t = gis::read_release_raster(raster->path, dem.geo);
+        gis::check_release_on_valid_dem(t, dem);
+        notes.push_back("Read the release thickness raster " + raster->path + ".");
+        files.push_back(raster->path);
+        return t;
+    }
+    throw ConfigError("release", "a DEM terrain takes release polygons or a thickness raster, not an analytic shape");
+}
+
+}  // namespace
+
+PreparedScene prepare_dem_scene(const Scenario& s) {
+    const auto& spec = std::get<DemTerrainSpec>(s.terrain);
+    PreparedScene p;
+    p.frame = Frame::dem;
+
+    gis::DemOptions opts;
+    opts.crs = spec.crs;
+    opts.cell_size = s.cell_size;
+    const gis::Dem dem = gis::load_dem(spec.dem_paths, opts);
+    p.input_notes.push_back(dem.description_of_steps);
+    p.input_files = spec.dem_paths;
+    p.grid = dem.geo.grid;
+    p.crs_wkt = dem.geo.crs_wkt;
+    p.geotransform = dem.geo.geotransform();
+    p.terrain = dem_terrain(p.grid, dem.z, s.numerics.gravity);
+
+    // Release: bed-normal thickness -> vertical thickness of the DEM frame's state.
+    std::vector<double> thickness = release_thickness(s, dem, p.input_notes, p.input_files);
+    Field2D field(p.grid.nx, p.grid.ny, kGhostLayers, 0.0);
+    field.set_interior(thickness);
+    p.initial = state_at_rest(p.grid, field, p.terrain);
+    double volume = total_volume(p.initial, p.grid);
+    if (!(volume > 0.0)) throw ConfigError("release", "the release holds no material on the DEM grid");
+    if (const auto* poly = std::get_if<PolygonReleaseSpec>(&s.release); poly && poly->volume) {
+        const double scale = *poly->volume / volume;
+        for (int j = 0; j < p.grid.ny; ++j)
+            for (int i = 0; i < p.grid.nx; ++i) p.initial.h(i, j) *= scale;
+        std::ostringstream n;
+        n << "Scaled the release thickness by " << scale << " to the requested volume of " << *poly->volume
+          << " m3.";
+        p.input_notes.push_back(n.str());
+        volume = total_volume(p.initial, p.grid);
+    }
+
+    // Cells filled outside the DEM's data footprint are not terrain: sinks.
+    p.outside_data.assign(p.grid.cells(), 0);
+    std::size_t outside = 0;
+    for (std::size_t k = 0; k < p.grid.cells(); ++k)
+        if (dem.filled_mask[k] == static_cast<std::uint8_t>(gis::CellOrigin::filled_outside)) {
+            p.outside_data[k] = 1;
+            ++outside;
+        }
+    if (outside == 0) p.outside_data.clear();
+
+    if (s.points) {
+        for (const auto& pt : gis::read_points(s.points->path, s.points->crs, dem.geo))
+            p.probes.push_back({pt.name, pt.x, pt.y, pt.i, pt.j});
+        p.input_files.push_back(s.points->path);
+        p.input_notes.push_back("Located " + std::to_string(p.probes.size()) + " monitoring points from " +
+                                s.points->path + ".");
+    }
+
+    p.horizontal_position = [grid = p.grid](int i, int j) {
+        return std::array<double, 2>{grid.x_center(i), grid.y_center(j)};
+    };
+    p.cell_area_m2 = p.grid.cell_area();
+    std::ostringstream d;
+    d << "DEM " << p.grid.nx << " x " << p.grid.ny << " cells of " << p.grid.dx << " m in "
+      << dem.geo.crs_label() << (outside ? ", " + std::to_string(outside) + " cells outside the data (sinks)" : "");
+    p.description = d.str();
+    return p;
 }
 
 }  // namespace avalanche

@@ -28,6 +28,10 @@ PreparedScene prepare_chute_scene(const Scenario& s) {
                                                  std::to_string(chute.width) + "] m");
     // x along the chute, y across; row 0 of the outputs is the edge at y = width.
     p.geotransform = {p.grid.x0, p.grid.dx, 0.0, p.grid.y_max(), 0.0, -p.grid.dy};
+    p.horizontal_position = [chute, grid = p.grid](int i, int j) {
+        return std::array<double, 2>{chute.horizontal_distance(grid.x_center(i)), grid.y_center(j)};
+    };
+    p.cell_area_m2 = p.grid.cell_area();
     std::ostringstream d;
     d << "chute " << chute.length << " x " << chute.width << " m, " << p.grid.nx << " x "
       << p.grid.ny << " cells of " << s.cell_size << " m";

@@ -97,6 +97,19 @@ double Simulation::kinetic_energy() const {
     return static_cast<double>(sum * grid_.cell_area());
 }
 
+void Simulation::drain_sinks() {
+    const ActiveBox& b = stepper_.active_box();
+    long double drained = 0.0L;
+    for (int j = b.j0; j < b.j1; ++j)
+        for (int i = b.i0; i < b.i1; ++i) {
+            if (!sinks_[static_cast<std::size_t>(j) * grid_.nx + i] || state_.h(i, j) == 0.0) continue;
+            drained += state_.h(i, j);
+            state_.h(i, j) = state_.hu(i, j) = state_.hv(i, j) = 0.0;
+        }
+    if (drained > 0.0L)
+        stepper_.set_outflow_volume(stepper_.outflow_volume() + static_cast<double>(drained * grid_.cell_area()));
+}
+
 bool Simulation::all_at_rest() const {
     const ActiveBox& b = stepper_.active_box();
     for (int j = b.j0; j < b.j1; ++j)
@@ -142,6 +155,7 @@ RunStatistics Simulation::run() {
             hits_output = true;
         }
         stepper_.step(state_, dt);
+        if (!sinks_.empty()) drain_sinks();
         ++steps;
         t = hits_output ? target : t + dt;
         check_state(state_, grid_, stepper_.active_box(), t);

@@ -164,7 +164,7 @@ void Stepper::update_pressure_coefficients(const State& s) {
             // (Wang & Li 2017 after eq. 3); central differences, clamped at the padding.
             const int im = std::max(i - 1, -ng), ip = std::min(i + 1, grid_.nx + ng - 1);
             const int jm = std::max(j - 1, -ng), jp = std::min(j + 1, grid_.ny + ng - 1);
-            const bool x_active = vel(s.h, s.hu, ip, j) - vel(s.h, s.hu, im, j) >= 0.0;
+            const bool x_active = vel(s.h, s.hu, ip, j) - vel(s.h, s.hu, im, j) > 0.0;
             const bool y_active = vel(s.h, s.hv, i, jp) - vel(s.h, s.hv, i, jm) > 0.0;
             cx_(i, j) = k_.kx(x_active) * terrain_.px(i, j);
             cy_(i, j) = k_.ky(x_active, y_active) * terrain_.py(i, j);

@@ -5,13 +5,17 @@
 //   execute_scene: builds the Simulation, attaches the writers, runs, writes the outputs.
 // Both frames share execute_scene, so every output is written the same way.
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "avalanche/core/grid.hpp"
 #include "avalanche/core/simulation.hpp"
 #include "avalanche/core/state.hpp"
 #include "avalanche/io/scenario.hpp"
+#include "avalanche/output/monitoring.hpp"
+#include "avalanche/output/runout.hpp"
 #include "avalanche/physics/terrain.hpp"
 
 namespace avalanche {
@@ -24,6 +28,18 @@ struct PreparedScene {
     std::string crs_wkt;                   // empty in the chute frame
     Frame frame = Frame::chute;
     std::string description;  // one line for the log, e.g. "chute 60 x 40 m"
+    std::vector<std::string> input_notes;  // what was read, reprojected, filled (log, report)
+
+    // Monitoring points located on the grid (empty without [points]).
+    std::vector<ProbeLocation> probes;
+    // Cells outside the DEM's data footprint (filled, not measured terrain): material
+    // that reaches them leaves the domain and is counted as outflow. Empty = none.
+    std::vector<std::uint8_t> outside_data;
+    // Horizontal (map) position of a cell for the runout metrics, and the horizontal
+    // area of a cell (m^2).
+    HorizontalPosition horizontal_position;
+    double cell_area_m2 = 0.0;
+    std::vector<std::string> input_files;  // inputs, for the report
 };
 
 // Dispatches on the terrain: ChuteGeometry here, DemTerrainSpec to prepare_dem_scene.

@@ -52,6 +52,10 @@ public:
                State initial, double h_min);
 
     void add_observer(StepObserver* o) { observers_.push_back(o); }
+    // Cells (index j * nx + i) where material leaves the domain, e.g. outside a DEM's
+    // data footprint: their content is removed after every step and counted as
+    // outflow, so the mass balance still closes.
+    void set_sink_cells(std::vector<std::uint8_t> mask) { sinks_ = std::move(mask); }
     // Called about every 0.1 s of wall time with the fraction of t_end done;
     // returning false interrupts the run (signals).
     void set_progress(std::function<bool(double)> p) { progress_ = std::move(p); }
@@ -65,6 +69,7 @@ public:
 private:
     [[nodiscard]] double kinetic_energy() const;
     [[nodiscard]] bool all_at_rest() const;
+    void drain_sinks();
 
     Grid grid_;
     const TerrainFields& terrain_;
@@ -73,6 +78,7 @@ private:
     State state_;
     Stepper stepper_;
     std::vector<StepObserver*> observers_;
+    std::vector<std::uint8_t> sinks_;
     std::function<bool(double)> progress_;
 };
 

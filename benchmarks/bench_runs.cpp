@@ -1,0 +1,276 @@
+// Whole-scene benchmarks (docs/performance.md): wall time, simulated time, steps,
+// cell updates per second, threads, peak memory and bytes per cell.
+//
+//   bench_runs [--case a|b|c|d|all] [--scheme waf|godunov|both] [--threads N]
+//              [--steps N] [--repeat N] [--json out.jsonl]
+//
+// (a) fully wet 1000 x 1000 tilted-plane DEM, fixed step count (default 50);
+// (b) the paper's chute at 0.2 m cells, until the flow stops;
+// (c) a 400 x 1000 synthetic valley DEM (10 m cells), 200 m release 20 m thick;
+// (d) a small release on a 2000 x 2000 DEM and on a 200 x 200 crop of it, the same
+//     simulated time: the ratio of wall times shows what the grid size costs when the
+//     solver works on the active box only.
+// Each (case, scheme) runs in its own child process, so that ru_maxrss is the peak
+// of that case alone and not of the largest case run before it.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "avalanche/core/error.hpp"
+#include "avalanche/core/simulation.hpp"
+#include "bench_scenes.hpp"
+#include "run_record.hpp"
+
+using namespace avalanche;
+using namespace avalanche::bench;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct Options {
+    std::string which = "all";
+    std::string scheme = "both";
+    int threads = 0;  // 0: leave OMP_NUM_THREADS / the runtime default
+    long steps = -1;  // -1: each case's default
+    int repeat = 1;
+    std::string json;
+};
+
+[[noreturn]] void usage(const std::string& why) {
+    std::cerr
+        << "bench_runs: " << why
+        << "\nusage: bench_runs [--case a|b|c|d|all] [--scheme waf|godunov|both] [--threads N]"
+           " [--steps N] [--repeat N] [--json out.jsonl]\n";
+    std::exit(2);
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int k = 1; k < argc; ++k) {
+        const std::string a = argv[k];
+        if (k + 1 >= argc) usage("missing value after " + a);
+        const std::string v = argv[++k];
+        if (a == "--case")
+            o.which = v;
+        else if (a == "--scheme")
+            o.scheme = v;
+        else if (a == "--threads")
+            o.threads = std::stoi(v);
+        else if (a == "--steps")
+            o.steps = std::stol(v);
+        else if (a == "--repeat")
+            o.repeat = std::stoi(v);
+        else if (a == "--json")
+            o.json = v;
+        else
+            usage("unknown option " + a);
+    }
+    if (o.which != "a" && o.which != "b" && o.which != "c" && o.which != "d" && o.which != "all")
+        usage("--case expects a, b, c, d or all");
+    if (o.scheme != "waf" && o.scheme != "godunov" && o.scheme != "both")
+        usage("--scheme expects waf, godunov or both");
+    if (o.repeat < 1 || o.threads < 0) usage("--repeat >= 1 and --threads >= 0 expected");
+    return o;
+}
+
+// Simulation::run has no step limit; this observer ends the run by throwing after
+// `limit` steps, and the driver collects the statistics itself.
+struct StepLimitReached {};
+class StepLimit : public StepObserver {
+  public:
+    explicit StepLimit(std::uint64_t limit) : limit_(limit) {}
+    void on_step(const SimulationView& v) override {
+        t = v.t;
+        if (v.step >= limit_) throw StepLimitReached{};
+    }
+    double t = 0.0;
+
+  private:
+    std::uint64_t limit_;
+};
+
+struct Outcome {
+    double wall = 0.0, construct = 0.0, t = 0.0, mass_error = 0.0, outflow = 0.0;
+    std::uint64_t steps = 0, updates = 0;
+    std::string end;
+};
+
+// One run of the production time loop (Simulation::run: CFL step, Strang step, state
+// check, end-of-run scans), limited to step_limit steps when step_limit > 0.
+Outcome run_once(const Scene& s, long step_limit) {
+    Outcome o;
+    const auto t0 = Clock::now();
+    Simulation sim(s.grid, s.terrain, s.material, s.numerics, s.initial, s.h_min);
+    o.construct = seconds_since(t0);
+    StepLimit limit(step_limit > 0 ? static_cast<std::uint64_t>(step_limit) : UINT64_MAX);
+    sim.add_observer(&limit);
+    const auto t1 = Clock::now();
+    try {
+        const RunStatistics st = sim.run();
+        o.wall = seconds_since(t1);
+        o.t = st.simulated_time;
+        o.steps = st.steps;
+        o.end = to_string(st.end_reason);
+        o.mass_error = st.relative_mass_error();
+    } catch (const StepLimitReached&) {
+        o.wall = seconds_since(t1);
+        o.t = limit.t;
+        o.steps = static_cast<std::uint64_t>(step_limit);
+        o.end = "step_limit";
+        const double v0 = total_volume(s.initial, s.grid);
+        o.mass_error =
+            (total_volume(sim.state(), s.grid) + sim.stepper().outflow_volume() - v0) / v0;
+    }
+    o.updates = sim.stepper().cell_updates();
+    o.outflow = sim.stepper().outflow_volume();
+    return o;
+}
+
+RunRecord measure(const std::string& case_id, const Scene& s, double scene_seconds, long step_limit,
+                  int repeat) {
+    RunRecord r;
+    r.case_id = case_id;
+    r.scene = s.name;
+    r.scheme = to_string(s.numerics.scheme);
+#ifdef _OPENMP
+    r.threads = omp_get_max_threads();
+#endif
+    r.nx = s.grid.nx;
+    r.ny = s.grid.ny;
+    for (int k = 0; k < repeat; ++k) {
+        const Outcome o = run_once(s, step_limit);
+        if (k == 0) r.setup_seconds = scene_seconds + o.construct;
+        r.wall_seconds.push_back(o.wall);
+        r.simulated_time = o.t;
+        r.steps = o.steps;
+        r.cell_updates = o.updates;
+        r.end_reason = o.end;
+        r.relative_mass_error = o.mass_error;
+        r.outflow_volume = o.outflow;
+    }
+    r.peak_rss_bytes = peak_rss_bytes();
+    return r;
+}
+
+void report(const RunRecord& r, const Options& opt) {
+    print(r);
+    if (!opt.json.empty()) append_json(r, opt.json);
+}
+
+template <class Build>
+RunRecord timed_case(const std::string& id, Build build, long step_limit, const Options& opt) {
+    const auto t0 = Clock::now();
+    const Scene s = build();
+    return measure(id, s, seconds_since(t0), step_limit, opt.repeat);
+}
+
+// (d): the same release and simulated time on a 200 x 200 crop and on the full
+// 2000 x 2000 DEM; the crop runs first so that each peak RSS is its own.
+void case_d(Scheme scheme, const Options& opt) {
+    const ValleyRelease release{0.0, 6000.0, 50.0, 10.0};
+    constexpr double t_end = 20.0;  // the flow stays well inside the crop (checked: no outflow)
+    RunRecord crop = timed_case(
+        "d_crop", [&] { return valley(200, 200, 10.0, -1000.0, 4500.0, release, scheme, t_end); },
+        -1, opt);
+    report(crop, opt);
+    RunRecord full = timed_case(
+        "d_full",
+        [&] { return valley(2000, 2000, 10.0, -10000.0, -6000.0, release, scheme, t_end); }, -1,
+        opt);
+    std::ostringstream note;
+    note << "wall ratio full/crop = " << full.best_wall() / crop.best_wall()
+         << " (target <= 3); with setup "
+         << (full.best_wall() + full.setup_seconds) / (crop.best_wall() + crop.setup_seconds)
+         << "; cell updates full/crop = "
+         << static_cast<double>(full.cell_updates) / static_cast<double>(crop.cell_updates);
+    full.note = note.str();
+    report(full, opt);
+}
+
+void run_job(char which, Scheme scheme, const Options& opt) {
+    switch (which) {
+        case 'a':
+            report(timed_case(
+                       "a", [&] { return tilted_plane(1000, 5.0, 30.0, 1.0, scheme); },
+                       opt.steps > 0 ? opt.steps : 50, opt),
+                   opt);
+            break;
+        case 'b':
+            report(timed_case(
+                       "b", [&] { return paper_chute(0.2, scheme); }, opt.steps, opt),
+                   opt);
+            break;
+        case 'c':
+            report(timed_case(
+                       "c",
+                       [&] {
+                           return valley(400, 1000, 10.0, -2000.0, 0.0, ValleyRelease{}, scheme,
+                                         150.0);
+                       },
+                       opt.steps, opt),
+                   opt);
+            break;
+        case 'd':
+            case_d(scheme, opt);
+            break;
+        default:
+            break;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Options opt = parse(argc, argv);
+    const std::string cases = opt.which == "all" ? "abcd" : opt.which;
+    std::vector<Scheme> schemes;
+    if (opt.scheme != "godunov") schemes.push_back(Scheme::waf);
+    if (opt.scheme != "waf") schemes.push_back(Scheme::godunov);
+    int failures = 0;
+    for (char c : cases) {
+        for (Scheme s : schemes) {
+            // One child per job: ru_maxrss is then the job's own peak. The parent
+            // never enters an OpenMP region, so the child's runtime starts clean.
+            std::cout.flush();
+            const pid_t pid = fork();
+            if (pid < 0) {
+                std::cerr << "bench_runs: fork failed\n";
+                return 1;
+            }
+            if (pid == 0) {
+                int code = 0;
+                try {
+#ifdef _OPENMP
+                    if (opt.threads > 0) omp_set_num_threads(opt.threads);
+#endif
+                    run_job(c, s, opt);
+                } catch (const std::exception& e) {
+                    std::cerr << "bench_runs: case " << c << " (" << to_string(s)
+                              << "): " << e.what() << "\n";
+                    code = 1;
+                }
+                std::cout.flush();
+                _exit(code);
+            }
+            int status = 0;
+            waitpid(pid, &status, 0);
+            if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) ++failures;
+        }
+    }
+    return failures == 0 ? 0 : 1;
+}

@@ -1,0 +1,84 @@
+#include "run_record.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace avalanche::bench {
+
+double RunRecord::best_wall() const {
+    return wall_seconds.empty() ? 0.0 : *std::min_element(wall_seconds.begin(), wall_seconds.end());
+}
+
+double RunRecord::cell_updates_per_second() const {
+    const double w = best_wall();
+    return w > 0.0 ? static_cast<double>(cell_updates) / w : 0.0;
+}
+
+double RunRecord::bytes_per_cell() const {
+    const double cells = static_cast<double>(nx) * ny;
+    return cells > 0.0 ? peak_rss_bytes / cells : 0.0;
+}
+
+double peak_rss_bytes() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return static_cast<double>(u.ru_maxrss) * 1024.0;  // Linux reports kilobytes
+}
+
+void print(const RunRecord& r) {
+    std::ostringstream walls;
+    for (std::size_t k = 0; k < r.wall_seconds.size(); ++k)
+        walls << (k ? ", " : "") << r.wall_seconds[k];
+    std::cout << std::setprecision(4) << "case " << r.case_id << " (" << r.scene << ", " << r.scheme
+              << ", " << r.threads << " thread" << (r.threads > 1 ? "s" : "") << "), grid " << r.nx
+              << " x " << r.ny << "\n  wall " << r.best_wall() << " s (best of [" << walls.str()
+              << "]), setup " << r.setup_seconds << " s\n  simulated " << r.simulated_time
+              << " s in " << r.steps << " steps, end: " << r.end_reason << "\n  cell updates "
+              << static_cast<double>(r.cell_updates) << ", " << r.cell_updates_per_second() / 1e6
+              << " M/s\n  peak memory " << r.peak_rss_bytes / 1048576.0
+              << " MiB = " << r.bytes_per_cell() << " B/cell, mass error " << r.relative_mass_error
+              << ", outflow " << r.outflow_volume << " m^3\n";
+    if (!r.note.empty()) std::cout << "  " << r.note << "\n";
+    std::cout << std::flush;
+}
+
+namespace {
+std::string quoted(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out + "\"";
+}
+}  // namespace
+
+void append_json(const RunRecord& r, const std::string& path) {
+    std::ostringstream o;
+    o << std::setprecision(10) << "{\"case\": " << quoted(r.case_id)
+      << ", \"scene\": " << quoted(r.scene) << ", \"scheme\": " << quoted(r.scheme)
+      << ", \"threads\": " << r.threads << ", \"nx\": " << r.nx << ", \"ny\": " << r.ny
+      << ", \"setup_seconds\": " << r.setup_seconds << ", \"wall_seconds\": [";
+    for (std::size_t k = 0; k < r.wall_seconds.size(); ++k)
+        o << (k ? ", " : "") << r.wall_seconds[k];
+    o << "], \"best_wall_seconds\": " << r.best_wall()
+      << ", \"simulated_time\": " << r.simulated_time << ", \"steps\": " << r.steps
+      << ", \"cell_updates\": " << r.cell_updates
+      << ", \"cell_updates_per_second\": " << r.cell_updates_per_second()
+      << ", \"peak_rss_bytes\": " << r.peak_rss_bytes
+      << ", \"bytes_per_cell\": " << r.bytes_per_cell()
+      << ", \"end_reason\": " << quoted(r.end_reason)
+      << ", \"relative_mass_error\": " << r.relative_mass_error
+      << ", \"outflow_volume\": " << r.outflow_volume << ", \"note\": " << quoted(r.note) << "}\n";
+    std::ofstream f(path, std::ios::app);
+    f << o.str();
+    if (!f) std::cerr << "bench_runs: cannot append to " << path << "\n";
+}
+
+}  // namespace avalanche::bench

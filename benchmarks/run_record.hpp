@@ -1,0 +1,41 @@
+#pragma once
+// One measured run of bench_runs: what is printed and what goes into the JSON file.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace avalanche::bench {
+
+struct RunRecord {
+    std::string case_id;  // "a", "b", "c", "d_crop", "d_full"
+    std::string scene;    // scene name
+    std::string scheme;   // "waf" or "godunov"
+    int threads = 1;      // omp_get_max_threads() during the run
+    int nx = 0, ny = 0;
+    double setup_seconds = 0.0;        // terrain, release and Simulation construction
+    std::vector<double> wall_seconds;  // of Simulation::run, one per repetition
+    double simulated_time = 0.0;       // s
+    std::uint64_t steps = 0;
+    std::uint64_t cell_updates = 0;  // active-box cells x steps (RunStatistics)
+    std::string end_reason;
+    double relative_mass_error = 0.0;
+    double outflow_volume = 0.0;  // m^3 through open edges (case d: must be 0 on the crop)
+    double peak_rss_bytes = 0.0;  // getrusage ru_maxrss of this process (one case per process)
+    std::string note;             // e.g. the ratio of case (d)
+
+    [[nodiscard]] double best_wall() const;
+    [[nodiscard]] double cell_updates_per_second() const;  // with the best wall time
+    [[nodiscard]] double bytes_per_cell() const;           // peak RSS / grid cells
+};
+
+// Peak resident set of the calling process (bytes).
+double peak_rss_bytes();
+
+// One human-readable line block on stdout.
+void print(const RunRecord& r);
+
+// Appends the record as one JSON object on one line (JSON Lines), so that runs of
+// several processes can share a file without rewriting it.
+void append_json(const RunRecord& r, const std::string& path);
+
+}  // namespace avalanche::bench

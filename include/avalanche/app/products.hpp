@@ -1,0 +1,33 @@
+#pragma once
+// The hazard products of a run (MODEL.md section 5) written into the output folder:
+// GeoTIFF maps (COG) with a QGIS style and a quick-look PNG each, the computational
+// DEM, monitoring-point series (CSV and HDF5) and a short Markdown report.
+#include <string>
+#include <vector>
+
+#include "avalanche/app/prepared_scene.hpp"
+#include "avalanche/core/simulation.hpp"
+#include "avalanche/output/hazard_maps.hpp"
+#include "avalanche/output/monitoring.hpp"
+#include "avalanche/output/runout.hpp"
+
+namespace avalanche {
+
+struct ProductInputs {
+    const PreparedScene& scene;
+    const Scenario& scenario;
+    const HazardMaps& maps;
+    const MonitoringPoints* probes;  // null without monitoring points
+    const RunStatistics& stats;
+    const RunoutMetrics& runout;
+    std::string config_hash;
+    std::string command_line;
+};
+
+// Writes every product; returns the file names written (relative to dir).
+std::vector<std::string> write_products(const std::string& dir, const ProductInputs& in);
+
+// DIR/report.md: what was run, the maps, the metrics, for a planner.
+void write_report(const std::string& dir, const ProductInputs& in, const std::vector<std::string>& files);
+
+}  // namespace avalanche

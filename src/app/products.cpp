@@ -1,0 +1,111 @@
+#include "avalanche/app/products.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+
+#include "avalanche/gis/dem.hpp"
+#include "avalanche/gis/quicklook.hpp"
+#include "avalanche/gis/raster_writer.hpp"
+#include "avalanche/gis/style.hpp"
+#include "avalanche/io/monitoring_writer.hpp"
+
+namespace avalanche {
+
+namespace {
+
+constexpr double kNodata = -9999.0;
+
+struct MapSpec {
+    std::string name;  // file base name
+    std::string description;
+    std::string units;
+    gis::ColorRamp ramp;
+    gis::SampleType type = gis::SampleType::float32;
+    double nodata = kNodata;
+    bool thickness = false;  // holds a thickness: say which
+};
+
+// Cells never reached are nodata in the maps of maxima, so that QGIS draws only the
+// affected area over the terrain.
+std::vector<double> masked(const std::vector<double>& values, const std::vector<double>& depth, double thr) {
+    std::vector<double> out(values.size());
+    for (std::size_t k = 0; k < values.size(); ++k) out[k] = depth[k] >= thr ? values[k] : kNodata;
+    return out;
+}
+
+}  // namespace
+
+std::vector<std::string> write_products(const std::string& dir, const ProductInputs& in) {
+    const std::filesystem::path d(dir);
+    const Grid& g = in.scene.grid;
+    const gis::GeoGrid geo{g, in.scene.crs_wkt};
+    const OutputParams& out = in.scenario.output;
+    const auto& depth = in.maps.max_depth();
+    std::vector<double> elevation = in.scene.terrain.elevation.interior();
+
+    std::vector<double> arrival = in.maps.arrival_time();
+    for (double& a : arrival)
+        if (a == HazardMaps::kNotReached) a = kNodata;
+    std::vector<double> deposit = in.maps.deposit_depth();
+    for (double& v : deposit)
+        if (!(v > 0.0)) v = kNodata;
+    std::vector<double> classes;
+    for (std::uint8_t c : in.maps.hazard_classes()) classes.push_back(c);
+
+    const std::string pressure_breaks = "classes: low < " + std::to_string(out.pressure_low_kpa) +
+                                        " kPa <= medium < " + std::to_string(out.pressure_high_kpa) +
+                                        " kPa <= high";
+    const std::vector<std::pair<MapSpec, std::vector<double>>> maps = {
+        {{"max_depth", "maximum flow depth (bed-normal)", "m", gis::depth_ramp(), gis::SampleType::float32,
+          kNodata, true},
+         masked(depth, depth, out.h_threshold)},
+        {{"max_velocity", "maximum along-surface speed", "m/s", gis::velocity_ramp()},
+         masked(in.maps.max_speed(), depth, out.h_threshold)},
+        {{"max_pressure", "maximum impact pressure rho |u|^2", "kPa",
+          gis::pressure_ramp({1.0, out.pressure_low_kpa, 10.0, out.pressure_high_kpa, 100.0})},
+         masked(in.maps.max_pressure(), depth, out.h_threshold)},
+        {{"arrival_time", "first time the depth reached the hazard threshold", "s",
+          gis::arrival_time_ramp(std::max(in.stats.simulated_time, 1e-9))},
+         arrival},
+        {{"deposit_thickness", "thickness at the end of the run (bed-normal)", "m", gis::depth_ramp(),
+          gis::SampleType::float32, kNodata, true},
+         deposit},
+        {{"hazard_class", "hazard class from the maximum impact pressure (" + pressure_breaks + ")", "class",
+          gis::hazard_class_palette({"not reached", "low", "medium", "high"}), gis::SampleType::uint8, 255.0},
+         classes},
+    };
+    std::vector<std::string> written;
+    for (const auto& [spec, values] : maps) {
+        gis::BandInfo band;
+        band.description = spec.description;
+        band.units = spec.units;
+        band.nodata = spec.nodata;
+        band.metadata["CONFIG_HASH"] = in.config_hash;
+        band.metadata["DEPTH_THRESHOLD_M"] = std::to_string(out.h_threshold);
+        if (spec.thickness) band.metadata["THICKNESS"] = "bed-normal";
+        const std::string tif = spec.name + ".tif";
+        gis::write_geotiff((d / tif).string(), geo, values, band, spec.type);
+        gis::write_qml((d / (spec.name + ".qml")).string(), spec.ramp);
+        gis::write_quicklook_png((d / (spec.name + ".png")).string(), geo, values, elevation, spec.ramp,
+                                 spec.nodata);
+        written.insert(written.end(), {tif, spec.name + ".qml", spec.name + ".png"});
+    }
+
+    // The computational DEM: the terrain the solver saw, on its grid.
+    gis::BandInfo dem_band;
+    dem_band.description = in.scene.frame == Frame::dem ? "computational DEM (elevation)"
+                                                        : "chute bed height above its lowest point";
+    dem_band.units = "m";
+    gis::write_geotiff((d / "dem.tif").string(), geo, elevation, dem_band, gis::SampleType::float32);
+    written.push_back("dem.tif");
+
+    if (in.probes && !in.probes->points().empty()) {
+        write_monitoring_csv((d / "monitoring.csv").string(), *in.probes);
+        write_monitoring_hdf5((d / "monitoring.h5").string(), *in.probes);
+        written.insert(written.end(), {"monitoring.csv", "monitoring.h5"});
+    }
+    return written;
+}
+
+}  // namespace avalanche

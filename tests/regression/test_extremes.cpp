@@ -1,0 +1,243 @@
+// Extreme-case matrix (issue "Speed against accuracy", item 5): the solver must
+// survive every corner of the input space a user can reach. Each case asserts
+//   - no NaN/Inf and no negative depth: Simulation::run throws NumericalError
+//     (caught here and reported as a failure with its cell and time), and an
+//     observer checks min h >= 0 after every step;
+//   - mass conserved to round-off: |RunStatistics::relative_mass_error()| < 1e-12,
+//     the outflow through open edges counted (MODEL.md 2.5);
+//   - every speed (true, along-surface, any cell holding material, any step) below
+//     the free-fall bound sqrt(u0^2 + 2 g drop) + 2 sqrt(k_max g h0) of the scene
+//     (extreme_scenes.hpp says why).
+// Cases are sized for CI: the whole executable runs in well under 2 minutes on one thread.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include "avalanche/core/error.hpp"
+#include "avalanche/core/observer.hpp"
+#include "avalanche/core/simulation.hpp"
+#include "extreme_scenes.hpp"
+
+using namespace avalanche;
+using namespace avalanche::extremes;
+
+namespace {
+
+// Depth above which a cell shows in the hazard maps (the default h_thr, 1 cm): the
+// fastest such cell is reported too, to tell a fixer whether the maps are affected.
+constexpr double kMapDepth = 0.01;
+
+// Watches every step: the fastest cell and the thinnest depth seen.
+class Watch : public StepObserver {
+  public:
+    explicit Watch(const Scene& s) : scene_(s) {}
+    void on_step(const SimulationView& v) override {
+        ++steps;
+        const ActiveBox& b = v.box;
+        for (int j = b.j0; j < b.j1; ++j)
+            for (int i = b.i0; i < b.i1; ++i) {
+                min_h = std::min(min_h, v.state.h(i, j));
+                const double speed = true_speed(scene_, v.state, i, j);
+                if (v.state.h(i, j) * scene_.terrain.normal_thickness(i, j) >= kMapDepth)
+                    max_speed_mapped = std::max(max_speed_mapped, speed);
+                if (speed > max_speed) {
+                    max_speed = speed;
+                    where_i = i;
+                    where_j = j;
+                    when = v.t;
+                    depth_there = v.state.h(i, j);
+                }
+            }
+    }
+    double min_h = std::numeric_limits<double>::infinity();
+    double max_speed = 0.0, when = 0.0, depth_there = 0.0;
+    double max_speed_mapped = 0.0;  // over cells at least kMapDepth thick
+    int where_i = -1, where_j = -1;
+    long steps = 0;
+
+  private:
+    const Scene& scene_;
+};
+
+std::string scheme_tag(Scheme s) { return s == Scheme::waf ? "waf" : "god"; }
+std::string model_tag(EarthPressureModel m) {
+    return m == EarthPressureModel::savage_hutter ? "sh" : "iso";
+}
+
+// Decimal value as an identifier fragment: 0.01 -> "0p01", 1e-08 -> "1em08".
+std::string tag(double v) {
+    std::ostringstream o;
+    o << v;
+    std::string s = o.str();
+    for (char& ch : s) {
+        if (ch == '.') ch = 'p';
+        if (ch == '-') ch = 'm';
+        if (ch == '+') ch = 'p';
+    }
+    return s;
+}
+
+// The matrix: for each scheme and earth-pressure model, one-at-a-time sweeps of
+// each parameter from a baseline (30 deg plane, delta 20, phi 35, 1 m release,
+// automatic h_min, C = 0.2), plus the special scenes.
+std::vector<Case> matrix() {
+    std::vector<Case> cases;
+    for (Scheme scheme : {Scheme::waf, Scheme::godunov}) {
+        for (EarthPressureModel ep :
+             {EarthPressureModel::savage_hutter, EarthPressureModel::isotropic}) {
+            const std::string suffix = "_" + scheme_tag(scheme) + "_" + model_tag(ep);
+            const auto add = [&](Case c, const std::string& name) {
+                c.scheme = scheme;
+                c.earth_pressure = ep;
+                c.name = name + suffix;
+                cases.push_back(c);
+            };
+            for (double slope : {0.0, 15.0, 30.0, 45.0, 60.0, 80.0}) {
+                Case c;
+                c.kind = Kind::plane_dem;
+                c.slope_deg = slope;
+                add(c, "dem_plane_slope" + tag(slope));
+            }
+            for (double slope : {0.0, 45.0, 80.0}) {
+                Case c;
+                c.kind = Kind::plane_chute;
+                c.slope_deg = slope;
+                add(c, "chute_plane_slope" + tag(slope));
+            }
+            // delta from 0 to 45 deg, phi from delta (the limit of the theory, k_x
+            // root zero) to 50; phi > 0 is required, so delta = 0 pairs with phi = 1.
+            const double friction[][2] = {{0, 1},   {0, 50},  {20, 20}, {20, 50},
+                                          {30, 30}, {45, 45}, {45, 50}};
+            for (const auto& dp : friction) {
+                Case c;
+                c.slope_deg = 35.0;
+                c.delta_deg = dp[0];
+                c.phi_deg = dp[1];
+                add(c, "friction_delta" + tag(dp[0]) + "_phi" + tag(dp[1]));
+            }
+            for (double h0 : {0.01, 0.1, 10.0, 200.0}) {
+                Case c;
+                c.slope_deg = 35.0;
+                c.h0 = h0;
+                add(c, "release_h" + tag(h0));
+            }
+            for (double h_min : {1e-8, 1e-6, 1e-4, 1e-2}) {
+                Case c;
+                c.h_min = h_min;
+                add(c, "h_min_" + tag(h_min));
+            }
+            for (double cfl : {0.05, 0.5}) {
+                Case c;
+                c.cfl = cfl;
+                add(c, "cfl_" + tag(cfl));
+            }
+            for (int n : {3, 4, 5}) {
+                for (double slope : {0.0, 60.0}) {
+                    Case c;
+                    c.kind = Kind::single_cell;
+                    c.n = n;
+                    c.slope_deg = slope;
+                    add(c, "grid" + std::to_string(n) + "x" + std::to_string(n) + "_slope" +
+                               tag(slope));
+                }
+            }
+            for (double h0 : {1.0, 10.0}) {
+                Case c;
+                c.kind = Kind::cliff_staircase;
+                c.h0 = h0;
+                c.u0 = 10.0;
+                c.delta_deg = 15.0;
+                add(c, "cliff_staircase_h" + tag(h0));
+            }
+            {
+                Case c;
+                c.kind = Kind::cliff_up;
+                c.h0 = 5.0;
+                c.u0 = 30.0;
+                add(c, "cliff_wall_ahead");
+            }
+            for (double delta : {0.0, 20.0}) {
+                Case c;
+                c.kind = Kind::outflow;
+                c.slope_deg = 40.0;
+                c.delta_deg = delta;
+                add(c, "outflow_delta" + tag(delta));
+            }
+            for (double u0 : {5.0, 50.0}) {
+                Case c;
+                c.kind = Kind::collision_flat;
+                c.n = 40;
+                c.u0 = u0;
+                add(c, "collision_flat_u" + tag(u0));
+            }
+            for (double slope : {30.0, 60.0}) {
+                Case c;
+                c.kind = Kind::collision_valley;
+                c.n = 40;
+                c.slope_deg = slope;
+                c.h0 = 2.0;
+                add(c, "collision_valley_slope" + tag(slope));
+            }
+        }
+    }
+    return cases;
+}
+
+}  // namespace
+
+namespace avalanche::extremes {
+// gtest prints a failing parameter with this instead of its bytes.
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+}  // namespace avalanche::extremes
+
+namespace {
+
+class Extremes : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Extremes, FiniteNonNegativeConservativeAndBelowFreeFall) {
+    const Case& c = GetParam();
+    const Scene scene = make_scene(c);
+    ASSERT_NO_THROW(validate(scene.material));
+    ASSERT_NO_THROW(validate(scene.numerics));
+    const double h_min = effective_h_min(scene.numerics, scene.initial, scene.terrain);
+    Simulation sim(scene.grid, scene.terrain, scene.material, scene.numerics, scene.initial, h_min);
+    Watch watch(scene);
+    sim.add_observer(&watch);
+    RunStatistics st;
+    try {
+        st = sim.run();
+    } catch (const NumericalError& e) {
+        FAIL() << c.name << ": NumericalError after " << watch.steps << " steps: " << e.what();
+    }
+    const double bound = speed_bound(scene);
+    RecordProperty("max_speed", std::to_string(watch.max_speed));
+    std::cout << "[extremes] " << c.name << ": grid " << scene.grid.nx << "x" << scene.grid.ny
+              << ", " << st.steps << " steps to t = " << st.simulated_time << " s ("
+              << to_string(st.end_reason) << "), mass error " << st.relative_mass_error()
+              << ", outflow " << st.outflow_volume << " of " << st.released_volume << " m^3, min h "
+              << watch.min_h << ", max speed " << watch.max_speed << " m/s (bound " << bound << "; "
+              << watch.max_speed_mapped << " m/s where h_n >= " << kMapDepth << " m)\n";
+    EXPECT_GE(watch.min_h, 0.0);
+    EXPECT_LT(std::abs(st.relative_mass_error()), 1e-12) << "outflow " << st.outflow_volume;
+    EXPECT_LT(watch.max_speed, bound)
+        << "at cell (" << watch.where_i << ", " << watch.where_j << "), t = " << watch.when
+        << " s, h = " << watch.depth_there << " m (h_min " << h_min
+        << " m); max where h_n >= " << kMapDepth << " m: " << watch.max_speed_mapped
+        << " m/s; drop " << scene.drop << " m, u0 " << scene.u0 << " m/s, h0 " << scene.h0 << " m";
+    EXPECT_GT(watch.steps, 0);
+    if (c.kind == Kind::outflow) {
+        EXPECT_GT(st.outflow_volume, 0.0)
+            << "the release next to the open edge must leave through it";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Matrix, Extremes, ::testing::ValuesIn(matrix()),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                             return info.param.name;
+                         });
+
+}  // namespace

@@ -1,0 +1,106 @@
+// MODEL.md section 4: the Savage-Hutter similarity solution (Savage & Hutter 1991;
+// Hutter et al. 1993), a parabolic cap (1D) or paraboloid (2D) sliding down a plane
+// while it spreads (tests/support/analytic_similarity.hpp, derived there).
+//
+// Norms: E1 = int |h - h_exact| dA / V (relative L1 depth error); the centroid x_c
+// from the first moment; the half-lengths L_x, L_y from the second moments
+// (L^2 = 5 var in 1D, 6 var in 2D for these shapes); the mean velocity
+// (momentum / volume), which for this solution is exactly x_c'.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "support/analytic_similarity.hpp"
+#include "support/analytic_studies.hpp"
+
+using namespace avalanche;
+using namespace avalanche::analytic;
+
+namespace {
+NumericsParams scheme(Scheme s) {
+    NumericsParams n;
+    n.scheme = s;
+    return n;
+}
+
+struct Bounds {
+    double e1;      // bound on E1
+    double x_c;     // bound on |x_c - exact| (m)
+    double spread;  // bound on |L - L_exact| / L_exact
+};
+
+SimilarityResult check(Scheme s, const SimilarityCase& c, double dx, const Bounds& b) {
+    const SimilarityResult r = run_similarity(c, scheme(s), dx);
+    std::cout << "[similarity] " << (s == Scheme::waf ? "WAF" : "Godunov") << ", " << c.name
+              << ", dx = " << dx << ": E1 = " << r.l1_relative << ", x_c " << r.x_c << " (exact "
+              << r.x_c_exact << "), L_x " << r.l_x << " (" << r.l_x_exact << "), L_y " << r.l_y
+              << " (" << r.l_y_exact << "), mean u " << r.mean_u << " (" << r.mean_u_exact << ")\n";
+    EXPECT_LT(r.l1_relative, b.e1);
+    EXPECT_LT(std::abs(r.x_c - r.x_c_exact), b.x_c);
+    EXPECT_LT(std::abs(r.l_x - r.l_x_exact) / r.l_x_exact, b.spread);
+    if (c.exact.two_d) {
+        EXPECT_LT(std::abs(r.l_y - r.l_y_exact) / r.l_y_exact, b.spread);
+    }
+    return r;
+}
+}  // namespace
+
+TEST(SimilaritySolution, RungeKuttaIsConvergedTo1e10) {
+    // The exact solution is an ODE integral: halving the RK4 step must not move it.
+    for (const SimilarityCase& c : {similarity_1d(EarthPressureModel::savage_hutter),
+                                    similarity_2d(EarthPressureModel::isotropic)}) {
+        const SimilarityState a = similarity_at(c.exact, c.t_end),
+                              b = similarity_at(c.exact, c.t_end, 5e-5);
+        EXPECT_LT(std::abs(a.l_x - b.l_x), 1e-10);
+        EXPECT_LT(std::abs(a.l_y - b.l_y), 1e-10);
+        EXPECT_LT(std::abs(a.x_c - b.x_c), 1e-10);
+    }
+}
+
+// 1D, dx = 0.1 m (40 cells over the initial cap). Measured (docs/verification.md):
+// WAF E1 = 9.9e-3 (iso) / 1.1e-2 (SH), L_x within 0.05 %; Godunov E1 = 2.4e-2 / 3.2e-2,
+// L_x 2 % / 3 % too wide (numerical diffusion at the edges). Both converge at first
+// order (the depth has a kink at the dry edges). The centroid moves with the exact
+// rigid-block law to < 2e-3 m. Bounds: ~1.5x the measured values.
+TEST(SimilaritySolution, OneDimensionalWaf) {
+    for (EarthPressureModel m : {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter})
+        check(Scheme::waf, similarity_1d(m), 0.1, {1.8e-2, 4e-3, 2e-3});
+}
+TEST(SimilaritySolution, OneDimensionalGodunov) {
+    for (EarthPressureModel m : {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter})
+        check(Scheme::godunov, similarity_1d(m), 0.1, {5e-2, 4e-3, 5e-2});
+}
+
+TEST(SimilaritySolution, OneDimensionalConvergesAtFirstOrder) {
+    // The dry edge (h ~ distance) limits both schemes to first order in L1: assert
+    // an observed order >= 0.8 between dx = 0.2 and 0.1 (measured 0.92-0.97).
+    for (Scheme s : {Scheme::waf, Scheme::godunov}) {
+        const SimilarityCase c = similarity_1d(EarthPressureModel::savage_hutter);
+        const double e0 = run_similarity(c, scheme(s), 0.2).l1_relative;
+        const double e1 = run_similarity(c, scheme(s), 0.1).l1_relative;
+        EXPECT_GT(std::log2(e0 / e1), 0.8);
+    }
+}
+
+// 2D, delta = 0, dx = 0.25 m (12 cells per initial half-width). Measured: WAF E1 =
+// 3.3e-2 (iso) / 3.7e-2 (SH), L_x, L_y within 0.35 %, x_c within 4e-3 m; Godunov E1 =
+// 0.11 / 0.13, L_x 7 % / 10.5 % too wide. Bounds ~1.5x.
+TEST(SimilaritySolution, TwoDimensionalWaf) {
+    for (EarthPressureModel m : {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter})
+        check(Scheme::waf, similarity_2d(m), 0.25, {6e-2, 1e-2, 1e-2});
+}
+TEST(SimilaritySolution, TwoDimensionalGodunov) {
+    for (EarthPressureModel m : {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter})
+        check(Scheme::godunov, similarity_2d(m), 0.25, {0.2, 1e-2, 0.16});
+}
+
+// Known failure, kept to be enabled when fixed: released from rest, du/dx = 0 at t = 0
+// and the SH regime switch (central-difference sign of du/dx, k_pass / k_act = 6.6)
+// develops a period-4 pattern of passive cells; the cap spreads too fast and the error
+// GROWS under refinement (E1 = 6e-2, 1.4e-1, 2.6e-1 at dx = 0.2, 0.1, 0.05; L_x 5.8 m
+// exact vs 6.2, 6.6, 7.2). The same cap released already spreading passes above.
+TEST(SimilaritySolution, DISABLED_SavageHutterFromRest) {
+    check(Scheme::waf, similarity_1d(EarthPressureModel::savage_hutter, /*from_rest=*/true), 0.1,
+          {1.8e-2, 4e-3, 2e-3});
+}
