@@ -32,7 +32,10 @@ Stepper::Stepper(const Grid& grid, const TerrainFields& terrain, const MaterialP
       u_lo_(grid.nx, grid.ny, kGhostLayers, kNoBound),
       u_hi_(grid.nx, grid.ny, kGhostLayers, -kNoBound),
       v_lo_(grid.nx, grid.ny, kGhostLayers, kNoBound),
-      v_hi_(grid.nx, grid.ny, kGhostLayers, -kNoBound) {}
+      v_hi_(grid.nx, grid.ny, kGhostLayers, -kNoBound),
+      speed_hi_(grid.nx, grid.ny, kGhostLayers, 0.0),
+      k_max_(std::max({k_.kx_active, k_.kx_passive, k_.ky_given_kx_active_active, k_.ky_given_kx_active_passive,
+                       k_.ky_given_kx_passive_active, k_.ky_given_kx_passive_passive})) {}
 
 // ---------------------------------------------------------------- active box
 
@@ -178,9 +181,19 @@ void Stepper::update_pressure_coefficients(const State& s) {
                 u_hi_(i, j) = u + ax;
                 v_lo_(i, j) = v - ay;
                 v_hi_(i, j) = v + ay;
+                // Along-surface speed plus the along-surface dry-front celerity
+                // 2 sqrt(k g_n h_n): frame-independent (docs/numerics.md, step 8).
+                double speed2 = u * u + v * v;
+                if (terrain_.has_metric) {
+                    const double w = terrain_.sx(i, j) * u + terrain_.sy(i, j) * v;
+                    speed2 += w * w;
+                }
+                speed_hi_(i, j) = std::sqrt(speed2) +
+                                  2.0 * std::sqrt(k_max_ * terrain_.gn(i, j) * h * terrain_.normal_thickness(i, j));
             } else {
                 u_lo_(i, j) = v_lo_(i, j) = kNoBound;
                 u_hi_(i, j) = v_hi_(i, j) = -kNoBound;
+                speed_hi_(i, j) = 0.0;
             }
         }
     }
@@ -299,30 +312,42 @@ void Stepper::face_fluxes(const State& s, const State& predicted, double tau, bo
             if (!waf || front) {
                 g = hllc_flux(fan);
             } else {
-                // Limiter ratios (Toro 2009 section 16.7): the shear wave is limited on
-                // the transverse velocity; the outer waves on the most restrictive of
-                // the depth and normal-momentum ratios. Depth alone lets a face with
-                // equal depths but a velocity jump take psi -> 2 (downwind) and the
-                // momentum oscillates; the minimum keeps each component TVD.
-                const double dh_loc = qr.h - ql.h, dq_loc = qr.qn - ql.qn;
-                const double dv_loc = velocity(qr, hd) - velocity(ql, hd);
+                // Limiter ratios. The shear wave is limited on the jump of the
+                // transverse velocity (Toro 2009 section 16.7). Each outer wave is
+                // limited on its own strength: the jumps of (h, q_n) at this face and
+                // at the upwind face are projected on the local eigenvectors of the
+                // flux Jacobian, alpha_1 = ((u + a) dh - dq) / 2a and
+                // alpha_3 = (dq - (u - a) dh) / 2a (LeVeque 2002 section 6.12).
+                // A depth ratio alone let a face with equal depths but a velocity
+                // jump take psi -> 2 (a downwind flux) and runs failed; the minimum of
+                // the depth and momentum ratios was robust but first order on smooth
+                // flow. The wave strengths are both robust and second order.
+                const double h_bar = 0.5 * (ql.h + qr.h);
+                const double u_bar = 0.5 * (ql.qn / ql.h + qr.qn / qr.h);  // both wet here
+                const double a_bar = std::sqrt(0.5 * (cc[k - off] + cc[k]) * h_bar);
+                const auto strength = [&](int wave, double dh, double dq) {
+                    return wave == 0 ? ((u_bar + a_bar) * dh - dq) / (2.0 * a_bar)
+                                     : (dq - (u_bar - a_bar) * dh) / (2.0 * a_bar);
+                };
+                // Strengths below 1e-12 of the depth count as flat (relative, so the
+                // choice does not depend on units or frame).
+                const double tiny_alpha = kFlat * h_bar;
                 const double s_wave[3] = {fan.s_l, fan.s_star, fan.s_r};
                 double psi[3];
                 for (int m = 0; m < 3; ++m) {
                     const bool from_left = s_wave[m] >= 0.0;
                     if (m == 1) {
+                        const double dv_loc = velocity(qr, hd) - velocity(ql, hd);
                         const double dv_up = from_left ? velocity(ql, hd) - velocity(qll, hd)
                                                        : velocity(qrr, hd) - velocity(qr, hd);
                         const double tiny_v =
                             kFlat * std::max(std::abs(velocity(ql, hd)), std::abs(velocity(qr, hd)));
                         psi[m] = limiter_psi(lim, jump_ratio(dv_up, dv_loc, tiny_v));
                     } else {
-                        const double dh_up = from_left ? ql.h - qll.h : qrr.h - qr.h;
-                        const double dq_up = from_left ? ql.qn - qll.qn : qrr.qn - qr.qn;
-                        const double tiny_h = kFlat * std::max(ql.h, qr.h);
-                        const double tiny_q = kFlat * std::max(std::abs(ql.qn), std::abs(qr.qn));
-                        psi[m] = std::min(limiter_psi(lim, jump_ratio(dh_up, dh_loc, tiny_h)),
-                                          limiter_psi(lim, jump_ratio(dq_up, dq_loc, tiny_q)));
+                        const double local = strength(m, qr.h - ql.h, qr.qn - ql.qn);
+                        const double upwind = from_left ? strength(m, ql.h - qll.h, ql.qn - qll.qn)
+                                                        : strength(m, qrr.h - qr.h, qrr.qn - qr.qn);
+                        psi[m] = limiter_psi(lim, jump_ratio(upwind, local, tiny_alpha));
                     }
                 }
                 g = waf_flux(fan, dt_dx, psi);
@@ -438,6 +463,7 @@ void Stepper::limit_and_update(State& s, double tau) {
     // before the update (the unsplit predictor couples the diagonals). Smooth wet
     // flow never reaches the bound; near-vacuum cells between diverging flows,
     // where the limited fluxes act on a vanishing mass, are clamped to it.
+    const bool metric = terrain_.has_metric;
 #pragma omp parallel for schedule(static)
     for (int j = b.j0; j < b.j1; ++j) {
         for (int i = b.i0; i < b.i1; ++i) {
@@ -459,9 +485,29 @@ void Stepper::limit_and_update(State& s, double tau) {
                 hu[k] = hv[k] = 0.0;
                 continue;
             }
-            const double u = hu[k] / hh[k], v = hv[k] / hh[k];
-            if (u < ulo || u > uhi) hu[k] = hh[k] * std::clamp(u, ulo, uhi);
-            if (v < vlo || v > vhi) hv[k] = hh[k] * std::clamp(v, vlo, vhi);
+            double u = hu[k] / hh[k], v = hv[k] / hh[k];
+            if (u < ulo || u > uhi) u = std::clamp(u, ulo, uhi);
+            if (v < vlo || v > vhi) v = std::clamp(v, vlo, vhi);
+            // The along-surface speed is bounded the same way. In the DEM frame the
+            // fluxes carry horizontal momentum, and horizontal momentum moved onto a
+            // much steeper cell (the foot of a cliff) would gain along-surface speed,
+            // i.e. energy, without bound: the material meeting a slope break keeps at
+            // most the speed it arrived with.
+            double speed_bound = 0.0;
+            for (int dj = -1; dj <= 1; ++dj)
+                for (int di = -1; di <= 1; ++di) speed_bound = std::max(speed_bound, speed_hi_(i + di, j + dj));
+            double speed2 = u * u + v * v;
+            if (metric) {
+                const double w = terrain_.sx(i, j) * u + terrain_.sy(i, j) * v;
+                speed2 += w * w;
+            }
+            if (speed2 > speed_bound * speed_bound) {
+                const double scale = speed_bound / std::sqrt(speed2);
+                u *= scale;
+                v *= scale;
+            }
+            hu[k] = hh[k] * u;
+            hv[k] = hh[k] * v;
         }
     }
     // Volume through the open edges, after scaling.
@@ -488,6 +534,7 @@ void Stepper::thin_layer_velocities(State& s) const {
             const double h = s.h(i, j);
             if (h >= hmin) continue;
             double best = hmin, u = 0.0, v = 0.0;
+            int best_i = i, best_j = j;
             const int ni[4] = {i - 1, i + 1, i, i};
             const int nj[4] = {j, j, j - 1, j + 1};
             for (int n = 0; n < 4; ++n) {
@@ -496,6 +543,21 @@ void Stepper::thin_layer_velocities(State& s) const {
                     best = hn;
                     u = s.hu(ni[n], nj[n]) / hn;
                     v = s.hv(ni[n], nj[n]) / hn;
+                    best_i = std::clamp(ni[n], 0, grid_.nx - 1);
+                    best_j = std::clamp(nj[n], 0, grid_.ny - 1);
+                }
+            }
+            // In the DEM frame the copied horizontal velocity means a different
+            // along-surface speed on this cell's slope: keep the neighbour's.
+            if (terrain_.has_metric && (u != 0.0 || v != 0.0)) {
+                const auto surface_speed = [&](int ii, int jj) {
+                    const double w = terrain_.sx(ii, jj) * u + terrain_.sy(ii, jj) * v;
+                    return std::sqrt(u * u + v * v + w * w);
+                };
+                const double here = surface_speed(i, j), there = surface_speed(best_i, best_j);
+                if (here > there) {
+                    u *= there / here;
+                    v *= there / here;
                 }
             }
             s.hu(i, j) = h * u;

@@ -86,9 +86,18 @@ TEST(SimilaritySolution, OneDimensionalConvergesAtFirstOrder) {
 // 2D, delta = 0, dx = 0.25 m (12 cells per initial half-width). Measured: WAF E1 =
 // 3.3e-2 (iso) / 3.7e-2 (SH), L_x, L_y within 0.35 %, x_c within 4e-3 m; Godunov E1 =
 // 0.11 / 0.13, L_x 7 % / 10.5 % too wide. Bounds ~1.5x.
+// The spread L (from the second moment) is sensitive to the first-order wet/dry fronts:
+// with the wave-strength limiter the interior is less diffused and the spread error at
+// dx = 0.25 is 1.3 % (isotropic) and 1.8 % (SH), converging at second order
+// (4.4 %, 1.3 %, 0.29 % iso and 5.2 %, 1.8 %, 0.45 % SH at dx = 0.5, 0.25, 0.125).
+// Bounds: 2.5 % at dx = 0.25, and halving dx must divide the error by at least 2.5.
 TEST(SimilaritySolution, TwoDimensionalWaf) {
-    for (EarthPressureModel m : {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter})
-        check(Scheme::waf, similarity_2d(m), 0.25, {6e-2, 1e-2, 1e-2});
+    for (EarthPressureModel m : {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter}) {
+        const SimilarityResult coarse = check(Scheme::waf, similarity_2d(m), 0.25, {6e-2, 1e-2, 2.5e-2});
+        const SimilarityResult fine = check(Scheme::waf, similarity_2d(m), 0.125, {2e-2, 1e-2, 1e-2});
+        EXPECT_GT(std::abs(coarse.l_x - coarse.l_x_exact), 2.5 * std::abs(fine.l_x - fine.l_x_exact));
+        EXPECT_GT(coarse.l1_relative, 2.0 * fine.l1_relative);
+    }
 }
 TEST(SimilaritySolution, TwoDimensionalGodunov) {
     for (EarthPressureModel m : {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter})

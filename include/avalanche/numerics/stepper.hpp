@@ -75,6 +75,8 @@ private:
     Field2D donor_factor_;   // positivity scaling of each cell's outgoing fluxes
     Field2D u_lo_, u_hi_;    // u -/+ 2a_x per cell at the start of the update
     Field2D v_lo_, v_hi_;    // v -/+ 2a_y
+    Field2D speed_hi_;       // along-surface speed + 2 sqrt(k g_n h_n)
+    double k_max_;           // largest earth-pressure coefficient
     double outflow_volume_ = 0.0;
     std::uint64_t cell_updates_ = 0;
 };
