@@ -23,25 +23,24 @@ sub-step, `h_min = 1e-5 x` the deepest initial cell, g = 9.81 m/s^2.
 
 | test | norm | bound | measured (test level) |
 |---|---|---|---|
-| DamBreakMangeney.* (dx = 0.1 m) | E1 (below) | WAF 7e-3, Godunov 1.2e-2 (1.5e-2 for m = 0) | 4.3e-3 to 9.9e-3 |
-| | front lag at h = 0.01 h0 | 1.0 m (1.2 m Godunov, m = 0) | 0.66-0.86 m |
-| | rear offset at h = 0.99 h0 | WAF 3 cells, Godunov 12 cells | 1.7-2.1 / 6.7-10.1 cells |
+| DamBreakMangeney.* (dx = 0.1 m) | E1 (below) | WAF 7e-3, Godunov 1.2e-2 (1.5e-2 for m = 0) | WAF 3.0e-3, Godunov 7.7e-3 (35 deg; section 1) |
+| | front lag at h = 0.01 h0 | 1.0 m (1.2 m Godunov, m = 0) | WAF 0.49 m, Godunov 0.69 m (35 deg) |
+| | rear offset at h = 0.99 h0 | WAF 3 cells, Godunov 12 cells | WAF 0.7, Godunov 6.7 cells (35 deg) |
 | | volume change (walls) | 1e-13 | < 5e-16 |
 | SimilaritySolution 1D (dx = 0.1 m) | E1; x_c; L_x | WAF 1.8e-2, 4e-3 m, 0.2 %; Godunov 5e-2, 4e-3 m, 5 % | WAF 9.9e-3/1.1e-2, 1.4e-3 m, 0.06 %; Godunov 2.4e-2/3.2e-2, < 1e-4 m, 2-3.2 % |
 | SimilaritySolution 1D order (dx 0.2 -> 0.1) | log2 E1 ratio | >= 0.8 | 0.92-0.97 |
-| SimilaritySolution 2D (dx = 0.25 m) | E1; x_c; L_x, L_y | WAF 6e-2, 1e-2 m, 1 %; Godunov 0.2, 1e-2 m, 16 % | WAF 3.3e-2/3.7e-2, 4e-3 m, 0.35 %; Godunov 0.11/0.13, 3e-3 m, 7-10.5 % |
+| SimilaritySolution 2D (dx = 0.25 m) | E1; x_c; L_x, L_y | WAF 6e-2, 1e-2 m, 2.5 % (and at dx 0.125: 2e-2, 1 %, errors divided by >= 2 (E1) and 2.5 (L)); Godunov 0.2, 1e-2 m, 16 % | WAF 3.4e-2/4.7e-2, 7e-3 m, 1.3-1.8 % (0.29-0.45 % at dx 0.125); Godunov 0.11/0.13, 3e-3 m, 7-10.5 % |
 | RigidBlock.CentroidAcceleration | relative error of mean acceleration; of mean velocity | 1e-3; 2e-5 | <= 2.6e-4; <= 7.8e-6 |
 | RigidBlock.UniformLayer... | h, hu, hv after 500 steps | bitwise equal | equal |
 | RigidBlock.GentlePileCreep (30 s) | edge move; variance radius; speed | 6 m; WAF 2.6 m, Godunov 8 m; 0.03 m/s | 2.5-4 m; 1.6-5.2 m; <= 0.014 m/s |
 | Conservation.* | relative mass error; min h; mirror asymmetry | 1e-12; >= 0; == 0 | <= 1.1e-15; 0; 0 |
-| Convergence.SmoothGodunov | observed order | [0.8, 1.3] | 0.81-0.95 |
-| Convergence.SmoothWafOrderAsImplemented | observed order | [0.8, 1.5] | 1.00-1.19 |
+| Convergence.SmoothGodunovIsFirstOrder | observed order | finest pair [0.8, 1.3], every pair > 0.7 | 0.76-0.95 (finest 0.87, 0.95) |
+| Convergence.SmoothWafIsSecondOrder | observed order | [1.6, 2.4] | 1.94-2.02 |
 | Convergence.DamBreakOrderAtMostOne | observed order of E1 | WAF [0.8, 1.3], Godunov [0.4, 1.0] | 1.01-1.03 / 0.58-0.64 |
 
-Three tests are `DISABLED_` on purpose: they state what the model should do
-and fails today (findings at the end): `DamBreakMangeney.DISABLED_SavageHutterActiveK`,
-`SimilaritySolution.DISABLED_SavageHutterFromRest`,
-`Convergence.DISABLED_SmoothWafIsSecondOrder` (run them with
+Two tests are `DISABLED_` on purpose: they state what the model should do
+and fails today (finding 2): `DamBreakMangeney.DISABLED_SavageHutterActiveK`,
+`SimilaritySolution.DISABLED_SavageHutterFromRest` (run them with
 `--gtest_also_run_disabled_tests`).
 )";
 
@@ -137,16 +136,12 @@ each level (the tests use levels 50-200 and a 1600-cell reference).
 inline constexpr const char* kFindingsText = R"(
 ## Findings (open)
 
-1. **WAF is first order on smooth flow.** With the outer-wave limiter
-   min(psi(r_h), psi(r_qn)) every limiter gives observed orders of ~1.0-1.3 on
-   the smooth hump and an error above the Godunov one; the error has a terraced
-   wiggle of ~1 % of the hump amplitude. The flux and the splitting are second
-   order: with psi = 1 on the outer waves (an experiment, not in the code) the
-   same problem gives p = 1.97, 2.00, 2.07 (linear amplitude 0.01). With psi(r_h)
-   alone, 1.15-1.7. Worth revisiting the per-wave ratios (Toro 2009 section 16.7
-   limits each wave by the jump of the quantity that wave carries).
-   `Convergence.DISABLED_SmoothWafIsSecondOrder` holds the band MODEL.md asks
-   for (>= 1.6).
+1. **Resolved: WAF was first order on smooth flow.** With the outer-wave limiter
+   min(psi(r_h), psi(r_qn)) every limiter gave observed orders of ~1.0-1.3 on the
+   smooth hump, with a terraced wiggle of ~1 % of the hump amplitude. The outer
+   waves are now limited on their characteristic wave strengths
+   (docs/numerics.md): every limiter measures 1.87-2.05 (section 5), and the WAF
+   dam-break error fell by about 1.5x.
 2. **Savage-Hutter regime switch.** k_x is chosen per cell by the sign of a
    central difference of u, with du/dx = 0 -> passive. For a mass released from
    rest every cell starts passive, and the switch then develops a period-4
@@ -169,14 +164,10 @@ inline constexpr const char* kFindingsText = R"(
 3. **Open edges with SH:** ghost cells copy the edge cell, so their du/dx = 0 and
    they get k_pass; an outflow that is subcritical for k_pass reflects (seen with
    the smooth case on [-6, 6] m).
-4. **Fronts lag.** At the 1 % depth the dam-break front is ~7 cells behind at
-   dx = 0.1 m for both schemes and the lag shrinks only at order ~0.6;
-   at 0.1 % the WAF front lags ~17 cells at dx = 0.1 (more than Godunov).
-5. **Superbee does not converge on the dam break** (E1 rises from 7.7e-3 at
-   dx = 0.1 to 1.7e-2 at 0.025 m with m > 0, stalls at 3e-3 with m = 0; its
-   front runs 0.2-0.4 m ahead of the exact one): the compressive limiter
-   squares off the rarefaction. Van Leer (the default), van Albada and minmod
-   converge at order 1.0.
+4. **Fronts lag** a few cells: at the 1 % depth the WAF front is 0.49 m behind at
+   dx = 0.1 m and 0.13 m at dx = 0.025 m (first order); Godunov 0.69 m and 0.41 m.
+5. **Superbee** now converges on the dam break at order ~1.0 like the other
+   limiters (it did not with the min(psi_h, psi_q) limiter).
 6. **Creep.** The gentle pile spreads by 1.6 m (WAF) to 5 m (Godunov) in 30 s
    (table above); a well-balanced Coulomb treatment (MODEL.md 2.4) would remove it.
 )";

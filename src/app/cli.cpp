@@ -44,10 +44,8 @@ void prefer_passive_openmp_wait(char** argv) {
     ::execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
 }
 
-}  // namespace
-
-int run_cli(int argc, char** argv) {
-    prefer_passive_openmp_wait(argv);
+// Parse, dispatch, catch: the error boundary itself, without the re-exec above.
+int dispatch(int argc, char** argv) {
     detail::GlobalOptions global;
     global.command_line = join_command_line(argc, argv);
     CLI::App app{
@@ -64,6 +62,7 @@ int run_cli(int argc, char** argv) {
     std::map<std::string, detail::Command> commands;
     commands["run"] = detail::add_run_command(app, global);
     commands["demo"] = detail::add_demo_command(app, global);
+    commands["batch"] = detail::add_batch_command(app, global);
     commands["version"] = detail::add_version_command(app);
 
     try {
@@ -95,12 +94,21 @@ int run_cli(int argc, char** argv) {
     }
 }
 
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+    prefer_passive_openmp_wait(argv);
+    return dispatch(argc, argv);
+}
+
 int run_cli(const std::vector<std::string>& args) {
     std::vector<std::string> copy = args;
     std::vector<char*> argv;
     for (auto& a : copy) argv.push_back(a.data());
     argv.push_back(nullptr);
-    return run_cli(static_cast<int>(copy.size()), argv.data());
+    // No re-exec here: in a test process /proc/self/exe is the test binary, which would
+    // restart with the CLI's arguments (and, under gtest, run every test again).
+    return dispatch(static_cast<int>(copy.size()), argv.data());
 }
 
 }  // namespace avalanche

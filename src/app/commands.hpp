@@ -34,5 +34,7 @@ struct RunArguments {
 };
 int execute_run(const RunArguments& args, const GlobalOptions& global);
 Command add_version_command(CLI::App& app);
+// Many scenarios from one base scenario (batch_run.cpp, docs/batch.md).
+Command add_batch_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace avalanche::detail

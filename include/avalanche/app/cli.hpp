@@ -10,7 +10,9 @@ namespace avalanche {
 
 int run_cli(int argc, char** argv);
 
-// The same with the arguments as strings (args[0] is the program name), for tests.
+// The same with the arguments as strings (args[0] is the program name), for tests. Unlike
+// the argc/argv form (the executable's), it never re-executes the process to set
+// OMP_WAIT_POLICY, so it is safe to call from a test binary.
 int run_cli(const std::vector<std::string>& args);
 
 }  // namespace avalanche

@@ -1,0 +1,33 @@
+#pragma once
+// DIR/manifest.json of a batch (docs/batch.md): per scenario its id, parameters, the
+// hash of its effective configuration and whether its outputs are complete. A restarted
+// batch skips a scenario only when the manifest AND its summary.json agree that it is
+// complete with the same configuration hash.
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace avalanche {
+
+struct ManifestEntry {
+    nlohmann::json parameters = nlohmann::json::object();  // {"delta_deg": 12.5, ...}
+    std::string config_hash;
+    bool complete = false;
+    std::string error;  // why the last attempt failed, "" if it did not
+};
+using Manifest = std::map<std::string, ManifestEntry>;  // by scenario id (sorted)
+
+// The manifest at `path`; empty when the file does not exist. InputError(path) when it
+// exists but is not a manifest (then the user decides: --overwrite or another DIR).
+Manifest read_manifest(const std::string& path);
+
+// Writes the manifest atomically (manifest.json.part + rename), so a crash mid-write
+// leaves the previous manifest. `batch` describes the batch (base scenario, sweeps).
+void write_manifest(const std::string& path, const Manifest& manifest, const nlohmann::json& batch);
+
+// Whether `scenario_dir` holds a finished run of configuration `config_hash`: its
+// summary.json exists (written last, so every product exists), carries that hash and
+// was not interrupted.
+bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash);
+
+}  // namespace avalanche

@@ -1,0 +1,160 @@
+// `avalanche-hazard batch` end to end on the coarse parametric chute: the physics trend
+// the issue asks for (runout falls as delta rises), comparison.csv against each
+// summary.json, the envelope maps, and resuming after a lost scenario.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "avalanche/app/cli.hpp"
+#include "avalanche/gis/raster_reader.hpp"
+#include "batch_test_support.hpp"
+
+namespace avalanche {
+namespace {
+
+namespace fs = std::filesystem;
+
+int run_batch(const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"avalanche-hazard", "batch", "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args);
+}
+
+std::size_t column(const std::vector<std::string>& header, const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(it, header.end()) << name;
+    return static_cast<std::size_t>(it - header.begin());
+}
+
+TEST(Batch, DeltaSweepOnTheChute) {
+    test::ScratchDir dir("batch-delta");
+    const auto base = dir.write("base.toml", test::kCoarseParametricChute);
+    const std::string out = dir.file("out");
+    ASSERT_EQ(run_batch({"--scenario", base, "--sweep", "delta=15,20,25,30", "--out", out,
+                         "--parallel", "2"}),
+              0);
+
+    const auto csv = test::read_csv(out + "/comparison.csv");
+    ASSERT_EQ(csv.size(), 5u);  // header + one row per scenario
+    const std::vector<std::string> expected_header = {"id",
+                                                      "delta_deg",
+                                                      "runout_m",
+                                                      "travel_angle_deg",
+                                                      "runout_efficiency",
+                                                      "affected_area_m2",
+                                                      "max_depth_m",
+                                                      "max_velocity_ms",
+                                                      "deposit_volume_m3",
+                                                      "end_reason",
+                                                      "wall_s"};
+    EXPECT_EQ(csv[0], expected_header);
+    const std::vector<std::pair<std::string, std::string>> runout_keys = {
+        {"runout_m", "runout_length_m"},
+        {"travel_angle_deg", "travel_angle_deg"},
+        {"runout_efficiency", "runout_efficiency"},
+        {"affected_area_m2", "affected_area_m2"},
+        {"max_depth_m", "max_depth_m"},
+        {"max_velocity_ms", "max_velocity_ms"},
+        {"deposit_volume_m3", "deposit_volume_m3"}};
+    std::vector<double> runout;
+    for (std::size_t r = 1; r < csv.size(); ++r) {
+        const auto& row = csv[r];
+        ASSERT_EQ(row.size(), expected_header.size());
+        EXPECT_EQ(row[0], "delta=" + row[1]);
+        if (r > 1) {
+            EXPECT_LT(csv[r - 1][0], row[0]);  // sorted by id
+        }
+        const auto summary = test::read_json(out + "/" + row[0] + "/summary.json");
+        EXPECT_EQ(std::strtod(row[1].c_str(), nullptr),
+                  summary["parameters"]["material"]["delta_deg"].get<double>());
+        for (const auto& [col, key] : runout_keys)
+            EXPECT_EQ(std::strtod(row[column(csv[0], col)].c_str(), nullptr),
+                      summary["runout"][key].get<double>())
+                << row[0] << " " << col;
+        EXPECT_EQ(row[column(csv[0], "end_reason")], summary["end_reason"].get<std::string>());
+        EXPECT_EQ(std::strtod(row.back().c_str(), nullptr), summary["wall_s"].get<double>());
+        runout.push_back(summary["runout"]["runout_length_m"].get<double>());
+    }
+    // Issue 4: a higher bed friction angle stops the flow earlier.
+    for (std::size_t k = 1; k < runout.size(); ++k)
+        EXPECT_LT(runout[k], runout[k - 1]) << "delta index " << k;
+
+    // Envelopes: frequency in [0, 1], 1 where every scenario reached; max >= each map.
+    const auto freq = gis::read_geotiff(out + "/impact_frequency.tif");
+    const auto envelope = gis::read_geotiff(out + "/envelope_max_depth.tif");
+    std::vector<int> reached(freq.values.size(), 0);
+    for (std::size_t r = 1; r < csv.size(); ++r) {
+        const auto depth = gis::read_geotiff(out + "/" + csv[r][0] + "/max_depth.tif");
+        ASSERT_EQ(depth.values.size(), envelope.values.size());
+        for (std::size_t k = 0; k < depth.values.size(); ++k) {
+            if (depth.values[k] == *depth.nodata) continue;
+            ++reached[k];
+            EXPECT_GE(envelope.values[k], depth.values[k]) << k;
+        }
+    }
+    int everywhere = 0;
+    for (std::size_t k = 0; k < freq.values.size(); ++k) {
+        EXPECT_GE(freq.values[k], 0.0);
+        EXPECT_LE(freq.values[k], 1.0);
+        EXPECT_FLOAT_EQ(freq.values[k], reached[k] / 4.0) << k;
+        if (reached[k] == 4) ++everywhere;
+    }
+    EXPECT_GT(everywhere, 0);
+    for (const char* f : {"envelope_max_velocity.tif", "envelope_max_pressure.tif",
+                          "envelope_min_arrival_time.tif", "runout_vs_delta_deg.svg",
+                          "max_velocity_vs_delta_deg.svg", "comparison.md", "manifest.json"})
+        EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+    EXPECT_NE(test::read_text(out + "/comparison.md").find("Longest runout: **delta=15**"),
+              std::string::npos);
+    const auto manifest = test::read_json(out + "/manifest.json");
+    ASSERT_EQ(manifest["scenarios"].size(), 4u);
+    for (const auto& s : manifest["scenarios"]) EXPECT_TRUE(s["complete"].get<bool>());
+}
+
+TEST(Batch, ResumeRecomputesOnlyTheLostScenario) {
+    test::ScratchDir dir("batch-resume");
+    const auto base = dir.write("base.toml", test::kCoarseParametricChute);
+    const std::string out = dir.file("out");
+    const std::vector<std::string> args = {"--scenario",  base,    "--sweep",
+                                           "delta=25,30", "--out", out};
+    ASSERT_EQ(run_batch(args), 0);
+    const auto before = test::read_csv(out + "/comparison.csv");
+    const auto kept = fs::last_write_time(out + "/delta=25/summary.json");
+    const auto kept_map = fs::last_write_time(out + "/delta=25/max_depth.tif");
+    fs::remove(out + "/delta=30/summary.json");
+
+    ASSERT_EQ(run_batch(args), 0);  // same command: resumes, no --overwrite needed
+    EXPECT_EQ(fs::last_write_time(out + "/delta=25/summary.json"), kept);
+    EXPECT_EQ(fs::last_write_time(out + "/delta=25/max_depth.tif"), kept_map);
+    EXPECT_TRUE(fs::exists(out + "/delta=30/summary.json"));
+    const auto after = test::read_csv(out + "/comparison.csv");
+    ASSERT_EQ(after.size(), before.size());
+    for (std::size_t r = 0; r < after.size(); ++r) {
+        // Everything but the wall-clock time of the recomputed scenario is identical.
+        auto a = after[r], b = before[r];
+        if (r > 0 && a[0] == "delta=30") a.back() = b.back() = "";
+        EXPECT_EQ(a, b) << r;
+    }
+    for (const auto& s : test::read_json(out + "/manifest.json")["scenarios"])
+        EXPECT_TRUE(s["complete"].get<bool>());
+
+    // A changed base configuration invalidates every scenario (the hash differs).
+    dir.write("base.toml",
+              std::string(test::kCoarseParametricChute) + "\n[output]\nh_threshold = 0.02\n");
+    ASSERT_EQ(run_batch(args), 0);
+    EXPECT_NE(fs::last_write_time(out + "/delta=25/summary.json"), kept);
+}
+
+TEST(Batch, RefusesTheFolderOfASingleRun) {
+    test::ScratchDir dir("batch-folder");
+    const auto base = dir.write("base.toml", test::kCoarseParametricChute);
+    dir.write("summary.json", "{}");
+    const auto r = test::run_binary(
+        dir, "batch --scenario '" + base + "' --sweep delta=20 --out '" + dir.file("") + "'");
+    EXPECT_EQ(r.exit_code, 4);
+    EXPECT_NE(r.err.find("single run"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace avalanche
