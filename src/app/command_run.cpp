@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -103,9 +104,14 @@ int execute_run(const RunArguments& args, const GlobalOptions& global) {
     options.command_line = global.command_line;
     options.progress = make_progress(!global.quiet && ::isatty(::fileno(stderr)));
     const RunOutcome outcome = execute_scene(scene, scenario, options);
-    if (!global.quiet)
-        std::cout << "results: " << outcome.results_path << "\nsummary: " << outcome.summary_path
-                  << "\n";
+    if (!global.quiet) {
+        const std::string dir = std::filesystem::path(outcome.summary_path).parent_path().string();
+        std::cout << "maps: " << dir
+                  << "/{max_depth,max_velocity,max_pressure,arrival_time,deposit_thickness,"
+                     "hazard_class}.tif (open in QGIS; styles beside them)\nreport: "
+                  << dir << "/report.md\nresults: " << outcome.results_path
+                  << "\nsummary: " << outcome.summary_path << "\n";
+    }
     if (outcome.stats.end_reason == EndReason::interrupted)
         throw Error(ExitCode::interrupted,
                     "interrupted at t = " + std::to_string(outcome.stats.simulated_time) +
