@@ -106,7 +106,7 @@ double Stepper::stable_dt(const State& s) const {
                                 k_.ky_given_kx_passive_active, k_.ky_given_kx_passive_passive});
     double rate = 0.0;  // max over cells of (|u| + a_x)/dx and (|v| + a_y)/dy
     const ActiveBox b = box_;
-#pragma omp parallel for reduction(max : rate) schedule(static)
+#pragma omp parallel for reduction(max : rate) schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         const double* h = s.h.row(j);
         const double* hu = s.hu.row(j);
@@ -130,6 +130,7 @@ void Stepper::step(State& s, double dt) {
         wet_box_.empty() ? ActiveBox{0, grid_.nx, 0, grid_.ny} : wet_box_.widened(3, grid_.nx, grid_.ny);
     shrink_box_to_wet(s, search);
     if (box_.empty()) return;
+    threaded_ = box_.cells() >= kMinCellsPerThreadedStep;
     if (numerics_.splitting == Splitting::lsl) {
         advect(s, 0.5 * dt);
         apply_sources(s, dt);
@@ -154,7 +155,7 @@ void Stepper::update_pressure_coefficients(const State& s) {
         const double hh = h(i, j);
         return hh >= hmin && hh > 0.0 ? q(i, j) / hh : 0.0;
     };
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
     for (int j = ja; j < jb; ++j) {
         for (int i = ia; i < ib; ++i) {
             const double h = s.h(i, j);
@@ -260,7 +261,7 @@ void Stepper::godunov_predictor(const State& s, double tau, bool along_x) {
     const double hd = h_min_;
     // Faces: the face "before" cell k lies between k - off and k.
     const int fib = along_x ? ib + 1 : ib, fjb = along_x ? jb : jb + 1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
     for (int j = ja; j < fjb; ++j) {
         for (int i = ia; i < fib; ++i) {
             const std::ptrdiff_t k = s.h.index(i, j);
@@ -270,7 +271,7 @@ void Stepper::godunov_predictor(const State& s, double tau, bool along_x) {
             f.qt[k] = g.qt;
         }
     }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
     for (int j = ja; j < jb; ++j) {
         for (int i = ia; i < ib; ++i) {
             const std::ptrdiff_t k = s.h.index(i, j);
@@ -304,7 +305,7 @@ void Stepper::face_fluxes(const State& s, const State& predicted, double tau, bo
     // round-off, so that a jump of a few ulps does not swing psi from 0 to 2.
     constexpr double kFlat = 1e-12;
     const int fib = along_x ? b.i1 + 1 : b.i1, fjb = along_x ? b.j1 : b.j1 + 1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
     for (int j = b.j0; j < fjb; ++j) {
         for (int i = b.i0; i < fib; ++i) {
             const std::ptrdiff_t k = s.h.index(i, j);
@@ -412,7 +413,7 @@ void Stepper::limit_and_update(State& s, double tau) {
     double* fyh = flux_y_.h.raw().data();
     double* factor = donor_factor_.raw().data();
     const double* h = s.h.raw().data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         for (int i = b.i0; i < b.i1; ++i) {
             const std::ptrdiff_t k = s.h.index(i, j);
@@ -429,7 +430,7 @@ void Stepper::limit_and_update(State& s, double tau) {
         double* fh = flux.h.raw().data();
         double* fu = flux.hu.raw().data();
         double* fv = flux.hv.raw().data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
         for (int j = b.j0; j < fjb; ++j) {
             for (int i = b.i0; i < fib; ++i) {
                 const std::ptrdiff_t k = s.h.index(i, j);
@@ -454,7 +455,7 @@ void Stepper::limit_and_update(State& s, double tau) {
     const double* fxv = flux_x_.hv.raw().data();
     const double* fyu = flux_y_.hu.raw().data();
     const double* fyv = flux_y_.hv.raw().data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         for (int i = b.i0; i < b.i1; ++i) {
             const std::ptrdiff_t k = s.h.index(i, j);
@@ -472,7 +473,7 @@ void Stepper::limit_and_update(State& s, double tau) {
     // flow never reaches the bound; near-vacuum cells between diverging flows,
     // where the limited fluxes act on a vanishing mass, are clamped to it.
     const bool metric = terrain_.has_metric;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         for (int i = b.i0; i < b.i1; ++i) {
             const std::ptrdiff_t k = s.h.index(i, j);
@@ -536,7 +537,7 @@ void Stepper::limit_and_update(State& s, double tau) {
 void Stepper::thin_layer_velocities(State& s) const {
     const ActiveBox b = box_;
     const double hmin = h_min_;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         for (int i = b.i0; i < b.i1; ++i) {
             const double h = s.h(i, j);
@@ -601,7 +602,7 @@ void Stepper::apply_sources(State& s, double dt) const {
     const double sub = dt / m;
     const bool curv = terrain_.has_curvature, metric = terrain_.has_metric;
     const double td = tan_delta_;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         double* h = s.h.row(j);
         double* hu = s.hu.row(j);

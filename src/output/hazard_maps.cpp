@@ -45,7 +45,8 @@ void HazardMaps::restore(std::vector<double> max_depth, std::vector<double> max_
 void HazardMaps::accumulate(const SimulationView& v, int i0, int i1, int j0, int j1) {
     const double rho_kpa = density_ / 1000.0;
     const double thr = params_.h_threshold;
-#pragma omp parallel for schedule(static)
+    const bool threaded = static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(j1 - j0) >= 20000;
+#pragma omp parallel for schedule(static) if (threaded)
     for (int j = j0; j < j1; ++j) {
         for (int i = i0; i < i1; ++i) {
             const double hn = v.state.h(i, j) * v.terrain.normal_thickness(i, j);

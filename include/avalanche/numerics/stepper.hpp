@@ -77,6 +77,12 @@ private:
     Field2D v_lo_, v_hi_;    // v -/+ 2a_y
     Field2D speed_hi_;       // along-surface speed + 2 sqrt(k g_n h_n)
     double k_max_;           // largest earth-pressure coefficient
+    // Small active areas run on one thread: a parallel region costs tens of
+    // microseconds to wake the team, more than the work of a few thousand cells, and
+    // on a shared machine a descheduled thread stalls every region (a 0.5 s test took
+    // 10 s on two threads). Results do not depend on it.
+    static constexpr std::size_t kMinCellsPerThreadedStep = 20000;
+    bool threaded_ = false;
     double outflow_volume_ = 0.0;
     std::uint64_t cell_updates_ = 0;
 };
