@@ -76,4 +76,11 @@ double observed_order(double e_coarse, double e_fine, double ratio = 2.0);
 // Average of a fine 1D row onto a grid coarser by an integer factor.
 std::vector<double> restrict_row(const std::vector<double>& fine, int factor);
 
+// Default numerics with the given scheme (the studies vary only the scheme).
+inline NumericsParams with_scheme(Scheme s) {
+    NumericsParams n;
+    n.scheme = s;
+    return n;
+}
+
 }  // namespace avalanche::analytic

@@ -20,11 +20,6 @@ using namespace avalanche;
 using namespace avalanche::analytic;
 
 namespace {
-NumericsParams scheme(Scheme s) {
-    NumericsParams n;
-    n.scheme = s;
-    return n;
-}
 
 std::vector<double> orders(const std::vector<double>& e) {
     std::vector<double> p;
@@ -51,7 +46,7 @@ TEST(Convergence, SmoothGodunovIsFirstOrder) {
     for (EarthPressureModel m :
          {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter}) {
         const std::vector<double> e =
-            smooth_errors(smooth_hump(m), scheme(Scheme::godunov), kCoarse, kLevels, kRefFactor);
+            smooth_errors(smooth_hump(m), with_scheme(Scheme::godunov), kCoarse, kLevels, kRefFactor);
         print(smooth_hump(m).name, e);
         const std::vector<double> p = orders(e);
         for (double q : p) EXPECT_GT(q, 0.7);
@@ -68,7 +63,7 @@ TEST(Convergence, SmoothWafIsSecondOrder) {
          {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter}) {
         const SmoothCase c = smooth_hump(m);
         const std::vector<double> w =
-            smooth_errors(c, scheme(Scheme::waf), kCoarse, kLevels, kRefFactor);
+            smooth_errors(c, with_scheme(Scheme::waf), kCoarse, kLevels, kRefFactor);
         print(c.name, w);
         for (double p : orders(w)) {
             EXPECT_GT(p, 1.6);
@@ -84,7 +79,7 @@ TEST(Convergence, DamBreakOrderAtMostOne) {
     for (Scheme s : {Scheme::waf, Scheme::godunov}) {
         std::vector<double> e;
         for (double dx : {0.2, 0.1, 0.05})
-            e.push_back(run_dam_break(dam_break_isotropic(), scheme(s), dx).l1_relative);
+            e.push_back(run_dam_break(dam_break_isotropic(), with_scheme(s), dx).l1_relative);
         print(s == Scheme::waf ? "dam break WAF" : "dam break Godunov", e);
         for (double p : orders(e)) {
             EXPECT_GT(p, s == Scheme::waf ? 0.8 : 0.4);

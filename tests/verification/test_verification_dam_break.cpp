@@ -20,11 +20,6 @@ using namespace avalanche::analytic;
 namespace {
 constexpr double kDx = 0.1;  // 10 cells per reservoir depth; 1D, ~0.3 s per run
 
-NumericsParams scheme(Scheme s) {
-    NumericsParams n;
-    n.scheme = s;
-    return n;
-}
 
 void report(const char* scheme_name, const DamBreakCase& c, const DamBreakResult& r) {
     std::cout << "[dam break] " << scheme_name << ", " << c.name << ", dx = " << r.dx
@@ -40,7 +35,7 @@ struct Bounds {
 };
 
 void check(Scheme s, const DamBreakCase& c, const Bounds& b) {
-    const DamBreakResult r = run_dam_break(c, scheme(s), kDx);
+    const DamBreakResult r = run_dam_break(c, with_scheme(s), kDx);
     report(s == Scheme::waf ? "WAF" : "Godunov", c, r);
     EXPECT_LT(r.l1_relative, b.e1);
     EXPECT_LT(r.front_exact - r.front, b.front_lag);

@@ -12,17 +12,13 @@
 #include <iostream>
 
 #include "support/analytic_similarity.hpp"
+#include "support/analytic_harness.hpp"
 #include "support/analytic_studies.hpp"
 
 using namespace avalanche;
 using namespace avalanche::analytic;
 
 namespace {
-NumericsParams scheme(Scheme s) {
-    NumericsParams n;
-    n.scheme = s;
-    return n;
-}
 
 struct Bounds {
     double e1;      // bound on E1
@@ -31,7 +27,7 @@ struct Bounds {
 };
 
 SimilarityResult check(Scheme s, const SimilarityCase& c, double dx, const Bounds& b) {
-    const SimilarityResult r = run_similarity(c, scheme(s), dx);
+    const SimilarityResult r = run_similarity(c, with_scheme(s), dx);
     std::cout << "[similarity] " << (s == Scheme::waf ? "WAF" : "Godunov") << ", " << c.name
               << ", dx = " << dx << ": E1 = " << r.l1_relative << ", x_c " << r.x_c << " (exact "
               << r.x_c_exact << "), L_x " << r.l_x << " (" << r.l_x_exact << "), L_y " << r.l_y
@@ -77,8 +73,8 @@ TEST(SimilaritySolution, OneDimensionalConvergesAtFirstOrder) {
     // an observed order >= 0.8 between dx = 0.2 and 0.1 (measured 0.92-0.97).
     for (Scheme s : {Scheme::waf, Scheme::godunov}) {
         const SimilarityCase c = similarity_1d(EarthPressureModel::savage_hutter);
-        const double e0 = run_similarity(c, scheme(s), 0.2).l1_relative;
-        const double e1 = run_similarity(c, scheme(s), 0.1).l1_relative;
+        const double e0 = run_similarity(c, with_scheme(s), 0.2).l1_relative;
+        const double e1 = run_similarity(c, with_scheme(s), 0.1).l1_relative;
         EXPECT_GT(std::log2(e0 / e1), 0.8);
     }
 }
