@@ -8,6 +8,9 @@ PACKAGES=(
   libeigen3-dev libhdf5-dev hdf5-tools
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libspdlog-dev nlohmann-json3-dev libtomlplusplus-dev
+  openmpi-bin libopenmpi-dev          # batch across machines (mpirun)
+  clang libclang-rt-14-dev            # sanitizers and the libFuzzer harnesses
+  chromium                            # headless rendering test of the HTML report
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
