@@ -31,7 +31,9 @@ struct TerrainFields {
     Field2D cxx, cxy, cyy;    // curvature for the centripetal load (1/m); empty if none
     Field2D sx, sy;           // surface gradient for the true speed; empty in bed-fitted frames
     Field2D normal_thickness; // factor from the state's h to bed-normal thickness
-    Field2D elevation;        // bed elevation for reports (m); chute: height above the runout
+    Field2D elevation;        // bed elevation (m); chute: height above the runout. Reports and the
+                              // solver's energy cap use it: it must be the height whose gravity
+                              // potential g z the accelerations ax, ay derive from.
     bool has_curvature = false;
     bool has_metric = false;
 
