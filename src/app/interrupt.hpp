@@ -1,7 +1,9 @@
 #pragma once
-// SIGINT/SIGTERM during a run: the handler only sets a flag; the progress callback
-// reads it and stops the time loop, the outputs so far are written, and the run exits
-// with ExitCode::interrupted. The previous handlers come back when the guard ends.
+// SIGINT/SIGTERM during a run: the handler only sets a flag (nothing else is
+// async-signal-safe); the progress callback reads it and stops the time loop after the
+// current step, the loop writes DIR/checkpoint.h5, the outputs so far are written marked
+// incomplete, and the run exits with ExitCode::interrupted (`run --resume DIR` goes on).
+// The previous handlers come back when the guard ends.
 #include <csignal>
 
 namespace avalanche::detail {

@@ -75,6 +75,7 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
           gis::hazard_class_palette({"not reached", "low", "medium", "high"}), gis::SampleType::uint8, 255.0},
          classes},
     };
+    const bool complete = in.stats.end_reason != EndReason::interrupted;
     std::vector<std::string> written;
     for (const auto& [spec, values] : maps) {
         gis::BandInfo band;
@@ -82,6 +83,10 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
         band.units = spec.units;
         band.nodata = spec.nodata;
         band.metadata["CONFIG_HASH"] = in.config_hash;
+        // Every map says whether the run reached its end: an interrupted run's maps are
+        // the flow so far (summary.json "complete" says the same).
+        band.dataset_metadata["AVALANCHE_COMPLETE"] = complete ? "YES" : "NO";
+        band.dataset_metadata["AVALANCHE_STATUS"] = complete ? "complete" : "incomplete";
         band.metadata["DEPTH_THRESHOLD_M"] = std::to_string(out.h_threshold);
         if (spec.thickness) band.metadata["THICKNESS"] = "bed-normal";
         const std::string tif = spec.name + ".tif";

@@ -23,6 +23,21 @@ std::string to_string(EndReason r) {
     return "unknown";
 }
 
+const std::vector<double>& CheckpointData::real(const std::string& name, long long expected_size) const {
+    const auto it = reals.find(name);
+    if (it == reals.end() || (expected_size >= 0 && it->second.size() != static_cast<std::size_t>(expected_size)))
+        throw InputError("checkpoint", "dataset " + name + " is missing or does not fit this run");
+    return it->second;
+}
+
+const std::vector<std::int64_t>& CheckpointData::integer(const std::string& name, long long expected_size) const {
+    const auto it = integers.find(name);
+    if (it == integers.end() ||
+        (expected_size >= 0 && it->second.size() != static_cast<std::size_t>(expected_size)))
+        throw InputError("checkpoint", "dataset " + name + " is missing or does not fit this run");
+    return it->second;
+}
+
 double RunStatistics::relative_mass_error() const {
     if (released_volume <= 0.0) return 0.0;
     return (final_volume + outflow_volume - released_volume) / released_volume;
@@ -118,23 +133,87 @@ bool Simulation::all_at_rest() const {
     return true;
 }
 
+void Simulation::resume(const LoopState& loop, const std::vector<double>& h, const std::vector<double>& hu,
+                        const std::vector<double>& hv, const CheckpointData& observers) {
+    const std::size_t n = state_.h.raw().size();
+    if (h.size() != n || hu.size() != n || hv.size() != n)
+        throw InputError("checkpoint", "the state arrays do not fit the grid of the run");
+    state_.h.raw() = h;
+    state_.hu.raw() = hu;
+    state_.hv.raw() = hv;
+    // The box is recomputed from the state: the steps that follow find the same wet
+    // cells from it as from the box the saving run carried (both hold every wet cell),
+    // so dt and every update are unchanged (tests/cli/test_checkpoint_resume.cpp).
+    stepper_.reset_active_box(state_);
+    stepper_.set_outflow_volume(loop.outflow_volume);
+    if (std::isfinite(loop.energy_budget)) stepper_.set_energy_budget(loop.energy_budget);
+    for (auto* o : observers_) o->restore(observers);
+    loop_ = loop;
+    resumed_ = true;
+}
+
+void Simulation::remember_last_good() {
+    // The next step updates at most the current box widened by the growth of the wet
+    // area in one step (stepper.cpp searches 3 cells beyond it).
+    const ActiveBox b = stepper_.active_box();
+    saved_box_ = b.empty() ? ActiveBox{0, grid_.nx, 0, grid_.ny} : b.widened(3, grid_.nx, grid_.ny);
+    const std::size_t w = static_cast<std::size_t>(saved_box_.i1 - saved_box_.i0);
+    const std::size_t n = saved_box_.cells();
+    saved_h_.resize(n);
+    saved_hu_.resize(n);
+    saved_hv_.resize(n);
+    for (int j = saved_box_.j0; j < saved_box_.j1; ++j) {
+        const std::size_t o = static_cast<std::size_t>(j - saved_box_.j0) * w;
+        std::copy_n(state_.h.row(j) + saved_box_.i0, w, saved_h_.begin() + static_cast<std::ptrdiff_t>(o));
+        std::copy_n(state_.hu.row(j) + saved_box_.i0, w, saved_hu_.begin() + static_cast<std::ptrdiff_t>(o));
+        std::copy_n(state_.hv.row(j) + saved_box_.i0, w, saved_hv_.begin() + static_cast<std::ptrdiff_t>(o));
+    }
+}
+
+void Simulation::report_fault(const LoopState& last_good_loop, const std::string& what) {
+    State last_good = state_;
+    const std::size_t w = static_cast<std::size_t>(saved_box_.i1 - saved_box_.i0);
+    for (int j = saved_box_.j0; j < saved_box_.j1; ++j) {
+        const auto o = static_cast<std::ptrdiff_t>(static_cast<std::size_t>(j - saved_box_.j0) * w);
+        std::copy_n(saved_h_.begin() + o, w, last_good.h.row(j) + saved_box_.i0);
+        std::copy_n(saved_hu_.begin() + o, w, last_good.hu.row(j) + saved_box_.i0);
+        std::copy_n(saved_hv_.begin() + o, w, last_good.hv.row(j) + saved_box_.i0);
+    }
+    on_fault_(FaultReport{last_good_loop, last_good, state_, what});
+    throw;  // only called from a catch block: the NumericalError goes on to run_cli
+}
+
 RunStatistics Simulation::run() {
     RunStatistics st;
 #ifdef _OPENMP
     st.threads = omp_get_max_threads();
 #endif
     const auto wall0 = std::chrono::steady_clock::now();
-    st.released_volume = total_volume(state_, grid_);
-    double t = 0.0;
-    std::uint64_t steps = 0;
+    LoopState L = loop_;
+    if (!resumed_) {
+        L = LoopState{};
+        L.released_volume = total_volume(state_, grid_);
+        L.next_output = numerics_.output_interval;
+        L.next_checkpoint = checkpoint_interval_;
+    }
+    const std::uint64_t cell_updates_before = L.cell_updates;  // the stepper counts from 0 again
+    double& t = L.t;
+    std::uint64_t& steps = L.steps;
     const auto view = [&]() { return SimulationView{grid_, terrain_, state_, t, steps, stepper_.active_box()}; };
-    for (auto* o : observers_) o->on_start(view());
-    for (auto* o : observers_) o->on_output(view());
+    if (!resumed_) {
+        for (auto* o : observers_) o->on_start(view());
+        for (auto* o : observers_) o->on_output(view());
+    }
+    const auto checkpoint = [&]() {
+        if (!write_checkpoint_) return;
+        L.outflow_volume = stepper_.outflow_volume();
+        L.cell_updates = cell_updates_before + stepper_.cell_updates();
+        L.energy_budget = stepper_.energy_budget();
+        SimulationCheckpoint c{L, state_, {}};
+        for (auto* o : observers_) o->save(c.observers);
+        write_checkpoint_(c);
+    };
 
-    std::uint64_t outputs_done = 1;  // snapshot k is at t = k * output_interval
-    double next_output = numerics_.output_interval;
-    double last_output_t = 0.0;
-    double ke_max = 0.0, quiet_since = -1.0;
     auto last_progress = wall0;
     EndReason reason = EndReason::end_time;
     const double t_end = numerics_.t_end;
@@ -148,40 +227,68 @@ RunStatistics Simulation::run() {
             reason = stepper_.active_box().empty() ? EndReason::no_material : EndReason::stopped_at_rest;
             break;
         }
-        const double target = std::min(next_output, t_end);
+        const double target = std::min(L.next_output, t_end);
         bool hits_output = false;
         if (t + dt >= target - eps_t) {
             dt = target - t;
             hits_output = true;
         }
+        LoopState before = L;  // the last good step, for a fault report
+        if (on_fault_) {
+            before.outflow_volume = stepper_.outflow_volume();
+            before.cell_updates = cell_updates_before + stepper_.cell_updates();
+            before.energy_budget = stepper_.energy_budget();
+            remember_last_good();
+        }
         stepper_.step(state_, dt);
         if (!sinks_.empty()) drain_sinks();
         ++steps;
         t = hits_output ? target : t + dt;
-        check_state(state_, grid_, stepper_.active_box(), t);
+        if (inject_fault_step_ != 0 && steps == inject_fault_step_ && !stepper_.active_box().empty()) {
+            const ActiveBox& b = stepper_.active_box();
+            state_.h((b.i0 + b.i1) / 2, (b.j0 + b.j1) / 2) = std::numeric_limits<double>::quiet_NaN();
+        }
+        try {
+            check_state(state_, grid_, stepper_.active_box(), t);
+        } catch (const NumericalError& e) {
+            if (on_fault_) report_fault(before, e.what());
+            throw;
+        }
         for (auto* o : observers_) o->on_step(view());
-        if (hits_output && target == next_output && t < t_end - eps_t) {
+        if (hits_output && target == L.next_output && t < t_end - eps_t) {
             for (auto* o : observers_) o->on_output(view());
-            last_output_t = t;
-            ++outputs_done;
-            next_output = numerics_.output_interval * static_cast<double>(outputs_done);
+            L.last_output_t = t;
+            ++L.outputs_done;
+            L.next_output = numerics_.output_interval * static_cast<double>(L.outputs_done);
         }
 
         // End-of-run rule.
         const double ke = kinetic_energy();
-        ke_max = std::max(ke_max, ke);
+        L.ke_max = std::max(L.ke_max, ke);
         if (all_at_rest()) {
             reason = EndReason::stopped_at_rest;
             break;
         }
-        if (ke <= numerics_.stop_ke_fraction * ke_max) {
-            if (quiet_since < 0.0) quiet_since = t;
-            if (t - quiet_since >= numerics_.stop_duration) {
+        if (ke <= numerics_.stop_ke_fraction * L.ke_max) {
+            if (L.quiet_since < 0.0) L.quiet_since = t;
+            if (t - L.quiet_since >= numerics_.stop_duration) {
                 reason = EndReason::stopped_kinetic_energy;
                 break;
             }
         } else {
-            quiet_since = -1.0;
+            L.quiet_since = -1.0;
+        }
+
+        // The step is complete here: a checkpoint taken now restarts at the top of the
+        // loop with nothing left over.
+        bool checkpointed = false;
+        if (checkpoint_interval_ > 0.0 && t >= L.next_checkpoint - eps_t) {
+            // The schedule is k x interval, counted from the time reached, so a long
+            // step never queues several checkpoints.
+            L.next_checkpoint =
+                checkpoint_interval_ * (std::floor(t / checkpoint_interval_ + 1e-9) + 1.0);
+            checkpoint();
+            checkpointed = true;
         }
 
         if (progress_) {
@@ -190,23 +297,25 @@ RunStatistics Simulation::run() {
                 last_progress = now;
                 if (!progress_(t / t_end)) {
                     reason = EndReason::interrupted;
+                    if (!checkpointed) checkpoint();
                     break;
                 }
             }
         }
     }
     if (progress_ && reason != EndReason::interrupted) progress_(1.0);
-    if (t > last_output_t) for (auto* o : observers_) o->on_output(view());
+    if (t > L.last_output_t) for (auto* o : observers_) o->on_output(view());
     for (auto* o : observers_) o->on_end(view());
 
     st.end_reason = reason;
     st.simulated_time = t;
     st.steps = steps;
-    st.cell_updates = stepper_.cell_updates();
+    st.cell_updates = cell_updates_before + stepper_.cell_updates();
     st.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    st.released_volume = L.released_volume;
     st.final_volume = total_volume(state_, grid_);
     st.outflow_volume = stepper_.outflow_volume();
-    st.max_kinetic_energy = ke_max;
+    st.max_kinetic_energy = L.ke_max;
     return st;
 }
 

@@ -107,6 +107,7 @@ void write_geotiff(const std::string& path, const GeoGrid& geo, const std::vecto
     b->SetDescription(band.description.c_str());
     b->SetUnitType(band.units.c_str());
     for (const auto& [key, value] : band.metadata) b->SetMetadataItem(key.c_str(), value.c_str());
+    for (const auto& [key, value] : band.dataset_metadata) mem->SetMetadataItem(key.c_str(), value.c_str());
 
     GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");
     if (cog == nullptr) throw OutputError(path, "GDAL has no COG driver (GDAL >= 3.1 needed)");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <system_error>
+#include <type_traits>
 #include <vector>
 
 #include "avalanche/core/error.hpp"
@@ -170,6 +171,64 @@ void ResultsWriter::on_output(const SimulationView& view) {
     w.append(w.v, 3, w.buf_v.data());
     w.append(w.time, 1, &view.t);
     ++w.snapshots;
+}
+
+static_assert(std::is_same_v<hid_t, std::int64_t>, "copy_snapshots_to takes an hid_t as int64_t");
+
+namespace {
+constexpr const char* kSnapshotSets[] = {"time", "h", "u", "v"};
+}
+
+void ResultsWriter::copy_snapshots_to(std::int64_t file, const std::string& file_path) const {
+    const Impl& w = *impl_;
+    Hid group = h5_take(H5Gcreate2(file, "results", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                        file_path, "create the group results");
+    // Flushed first: H5Ocopy copies chunks from the file, and the last snapshot may
+    // still sit in the chunk cache. H5Ocopy keeps chunking, filters and attributes.
+    h5_check(H5Fflush(w.file.get(), H5F_SCOPE_LOCAL), w.part_path, "flush the snapshots");
+    for (const char* name : kSnapshotSets)
+        h5_check(H5Ocopy(w.file.get(), name, group.get(), name, H5P_DEFAULT, H5P_DEFAULT), file_path,
+                 std::string("copy the snapshots (") + name + ")");
+    write_attribute(group.get(), "snapshots", static_cast<std::int64_t>(w.snapshots), file_path);
+}
+
+void ResultsWriter::resume_from(const std::string& checkpoint_path) {
+    Impl& w = *impl_;
+    const hid_t cf = H5Fopen(checkpoint_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (cf < 0) throw InputError(checkpoint_path, "cannot open the checkpoint to copy its snapshots");
+    Hid ckpt(cf, H5Fclose);
+    if (H5Lexists(ckpt.get(), "results", H5P_DEFAULT) <= 0)
+        throw InputError(checkpoint_path, "not a complete checkpoint: group results is missing");
+    w.time.reset();
+    w.h.reset();
+    w.u.reset();
+    w.v.reset();
+    for (const char* name : kSnapshotSets) {
+        const std::string src = std::string("results/") + name;
+        h5_check(H5Ldelete(w.file.get(), name, H5P_DEFAULT), w.part_path, "replace the snapshots");
+        if (H5Lexists(ckpt.get(), src.c_str(), H5P_DEFAULT) <= 0 ||
+            H5Ocopy(ckpt.get(), src.c_str(), w.file.get(), name, H5P_DEFAULT, H5P_DEFAULT) < 0)
+            throw InputError(checkpoint_path, "cannot copy the snapshots " + src);
+    }
+    const auto open = [&](const char* name) {
+        return h5_take(H5Dopen2(w.file.get(), name, H5P_DEFAULT), H5Dclose, w.part_path,
+                       std::string("open the dataset ") + name);
+    };
+    w.time = open("time");
+    w.h = open("h");
+    w.u = open("u");
+    w.v = open("v");
+    Hid tspace = h5_take(H5Dget_space(w.time.get()), H5Sclose, w.part_path, "read the snapshots");
+    Hid hspace = h5_take(H5Dget_space(w.h.get()), H5Sclose, w.part_path, "read the snapshots");
+    hsize_t tdims[1] = {0}, hdims[3] = {0, 0, 0};
+    if (H5Sget_simple_extent_ndims(tspace.get()) != 1 || H5Sget_simple_extent_ndims(hspace.get()) != 3)
+        throw InputError(checkpoint_path, "the saved snapshots have the wrong rank");
+    H5Sget_simple_extent_dims(tspace.get(), tdims, nullptr);
+    H5Sget_simple_extent_dims(hspace.get(), hdims, nullptr);
+    if (hdims[0] != tdims[0] || hdims[1] != static_cast<hsize_t>(w.grid.ny) ||
+        hdims[2] != static_cast<hsize_t>(w.grid.nx))
+        throw InputError(checkpoint_path, "the saved snapshots do not fit the grid of the run");
+    w.snapshots = static_cast<std::size_t>(tdims[0]);
 }
 
 void ResultsWriter::finish(const RunStatistics& stats) {

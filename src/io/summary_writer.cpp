@@ -12,6 +12,8 @@ nlohmann::json make_summary(const SummaryInputs& in) {
     s["command_line"] = in.command_line;
     s["config_hash"] = in.config_hash;
     s["end_reason"] = to_string(st.end_reason);
+    // An interrupted run's products hold the flow so far, not the run's result.
+    s["complete"] = st.end_reason != EndReason::interrupted;
     s["simulated_time_s"] = st.simulated_time;
     s["steps"] = st.steps;
     s["wall_s"] = st.wall_seconds;

@@ -34,11 +34,23 @@ HazardMaps::HazardMaps(const Grid& grid, const OutputParams& params, double dens
       arrival_(grid.cells(), kNotReached),
       deposit_(grid.cells(), 0.0) {}
 
-void HazardMaps::restore(std::vector<double> max_depth, std::vector<double> max_speed,
-                         std::vector<double> max_pressure, std::vector<double> arrival) {
-    max_depth_ = std::move(max_depth);
-    max_speed_ = std::move(max_speed);
-    max_pressure_ = std::move(max_pressure);
+void HazardMaps::save(CheckpointData& c) const {
+    c.reals["hazard_maps/max_depth"] = max_depth_;
+    c.reals["hazard_maps/max_speed"] = max_speed_;
+    c.reals["hazard_maps/max_pressure"] = max_pressure_;
+    c.reals["hazard_maps/arrival_time"] = arrival_;
+}
+
+void HazardMaps::restore(const CheckpointData& c) {
+    const auto n = static_cast<long long>(grid_.cells());
+    // Read all four before assigning any: a bad checkpoint leaves the maps untouched.
+    auto depth = c.real("hazard_maps/max_depth", n);
+    auto speed = c.real("hazard_maps/max_speed", n);
+    auto pressure = c.real("hazard_maps/max_pressure", n);
+    auto arrival = c.real("hazard_maps/arrival_time", n);
+    max_depth_ = std::move(depth);
+    max_speed_ = std::move(speed);
+    max_pressure_ = std::move(pressure);
     arrival_ = std::move(arrival);
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "avalanche/core/error.hpp"
 #include "avalanche/output/hazard_maps.hpp"
 
 namespace avalanche {
@@ -28,6 +29,41 @@ void MonitoringPoints::on_step(const SimulationView& v) {
 
 void MonitoringPoints::on_end(const SimulationView& v) {
     if (series_.empty() || series_.front().empty() || series_.front().back().t < v.t) sample(v);
+}
+
+namespace {
+constexpr std::size_t kSampleFields = 6;  // t, h, u, v, speed, pressure
+}
+
+void MonitoringPoints::save(CheckpointData& c) const {
+    std::vector<std::int64_t> counts;
+    std::vector<double> samples;
+    for (const auto& series : series_) {
+        counts.push_back(static_cast<std::int64_t>(series.size()));
+        for (const ProbeSample& s : series) samples.insert(samples.end(), {s.t, s.h, s.u, s.v, s.speed, s.pressure});
+    }
+    c.integers["monitoring/sample_counts"] = counts;
+    c.reals["monitoring/samples"] = samples;
+    c.reals["monitoring/next_sample_time"] = {next_};
+}
+
+void MonitoringPoints::restore(const CheckpointData& c) {
+    const auto& counts = c.integer("monitoring/sample_counts", static_cast<long long>(points_.size()));
+    std::size_t total = 0;
+    for (std::int64_t n : counts) {
+        if (n < 0) throw InputError("checkpoint", "dataset monitoring/sample_counts holds a negative count");
+        total += static_cast<std::size_t>(n);
+    }
+    const auto& samples = c.real("monitoring/samples", static_cast<long long>(total * kSampleFields));
+    const double next = c.real("monitoring/next_sample_time", 1).front();
+    std::vector<std::vector<ProbeSample>> series(points_.size());
+    std::size_t k = 0;
+    for (std::size_t p = 0; p < points_.size(); ++p)
+        for (std::int64_t n = 0; n < counts[p]; ++n, k += kSampleFields)
+            series[p].push_back({samples[k], samples[k + 1], samples[k + 2], samples[k + 3], samples[k + 4],
+                                 samples[k + 5]});
+    series_ = std::move(series);
+    next_ = next;
 }
 
 }  // namespace avalanche

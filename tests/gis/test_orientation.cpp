@@ -76,7 +76,7 @@ TEST(Orientation, WrittenMapHasTheKnownCornerValues) {
     std::vector<double> v(geo.grid.cells());
     for (int j = 0; j < kH; ++j)
         for (int i = 0; i < kW; ++i) v[static_cast<std::size_t>(j) * kW + i] = 1000.0 * i + j;
-    write_geotiff(tmp.file("map.tif"), geo, v, BandInfo{"test", "m", -1.0, {}});
+    write_geotiff(tmp.file("map.tif"), geo, v, BandInfo{"test", "m", -1.0, {}, {}});
     const auto rows = testing::read_raw_rows(tmp.file("map.tif"));
     EXPECT_DOUBLE_EQ(rows.front(), kH - 1);                      // north-west
     EXPECT_DOUBLE_EQ(rows.back(), 1000.0 * (kW - 1));            // south-east

@@ -19,7 +19,7 @@ TEST(ReadGeotiff, RoundTripsWriteGeotiffInSolverOrientation) {
     for (int j = 0; j < geo.grid.ny; ++j)
         for (int i = 0; i < geo.grid.nx; ++i) ramp[j * geo.grid.nx + i] = 10.0 * j + i;
     ramp[3] = -9999.0;
-    write_geotiff(tmp.file("ramp.tif"), geo, ramp, BandInfo{"ramp", "m", -9999.0, {}},
+    write_geotiff(tmp.file("ramp.tif"), geo, ramp, BandInfo{"ramp", "m", -9999.0, {}, {}},
                   SampleType::float64);
 
     const RasterData r = read_geotiff(tmp.file("ramp.tif"));
@@ -39,7 +39,7 @@ TEST(ReadGeotiff, RoundTripsWriteGeotiffInSolverOrientation) {
 TEST(ReadGeotiff, WithoutCrsTheWktIsEmpty) {
     TempDir tmp;
     const GeoGrid geo{Grid{3, 2, 0.5, 0.5, 0.0, 0.0}, ""};
-    write_geotiff(tmp.file("chute.tif"), geo, {1, 2, 3, 4, 5, 6}, BandInfo{"x", "m", -1.0, {}});
+    write_geotiff(tmp.file("chute.tif"), geo, {1, 2, 3, 4, 5, 6}, BandInfo{"x", "m", -1.0, {}, {}});
     const RasterData r = read_geotiff(tmp.file("chute.tif"));
     EXPECT_TRUE(r.geo.crs_wkt.empty());
     EXPECT_EQ(r.values, (std::vector<double>{1, 2, 3, 4, 5, 6}));

@@ -170,13 +170,13 @@ TEST(ReleaseRaster, ResampledOntoTheGridAndChecked) {
     const Dem& dem = avaKot_dem();
     const Release poly =
         rasterize_release_polygons(testing::avaKot("avaKot_release.gpkg"), dem.geo);
-    write_geotiff(tmp.file("h.tif"), dem.geo, poly.thickness, BandInfo{"h", "m", -1.0, {}});
+    write_geotiff(tmp.file("h.tif"), dem.geo, poly.thickness, BandInfo{"h", "m", -1.0, {}, {}});
     const std::vector<double> h = read_release_raster(tmp.file("h.tif"), dem.geo);
     EXPECT_EQ(h, poly.thickness);  // same grid: the cells come back unchanged
 
     std::vector<double> negative = poly.thickness;
     negative[5] = -0.5;
-    write_geotiff(tmp.file("neg.tif"), dem.geo, negative, BandInfo{"h", "m", -1.0, {}});
+    write_geotiff(tmp.file("neg.tif"), dem.geo, negative, BandInfo{"h", "m", -1.0, {}, {}});
     expect_error<InputError>([&] { read_release_raster(tmp.file("neg.tif"), dem.geo); },
                              {"neg.tif", "negative"});
 }

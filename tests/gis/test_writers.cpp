@@ -28,7 +28,7 @@ TEST(WriteGeotiff, CogWithCrsNodataUnitsAndDescription) {
     std::vector<double> depth(geo.grid.cells(), -9999.0);
     for (std::size_t k = 0; k < depth.size(); k += 3)
         depth[k] = 0.001 * static_cast<double>(k % 997);
-    BandInfo band{"maximum flow depth (bed-normal)", "m", -9999.0, {{"THICKNESS", "bed-normal"}}};
+    BandInfo band{"maximum flow depth (bed-normal)", "m", -9999.0, {{"THICKNESS", "bed-normal"}}, {}};
     write_geotiff(tmp.file("max_depth.tif"), geo, depth, band);
 
     GDALAllRegister();
@@ -64,13 +64,13 @@ TEST(WriteGeotiff, ClassMapAsBytes) {
     std::vector<double> classes(geo.grid.cells(), 0.0);
     classes[47] = 3.0;
     write_geotiff(tmp.file("hazard_class.tif"), geo, classes,
-                  BandInfo{"hazard class", "", 255.0, {}}, SampleType::uint8);
+                  BandInfo{"hazard class", "", 255.0, {}, {}}, SampleType::uint8);
     const auto rows = testing::read_raw_rows(tmp.file("hazard_class.tif"));
     EXPECT_DOUBLE_EQ(rows[7], 3.0);  // solver (7, 5) = GeoTIFF row 0, column 7
     classes[1] = 2.5;
     expect_error<OutputError>(
         [&] {
-            write_geotiff(tmp.file("c.tif"), geo, classes, BandInfo{"c", "", 255.0, {}},
+            write_geotiff(tmp.file("c.tif"), geo, classes, BandInfo{"c", "", 255.0, {}, {}},
                           SampleType::uint8);
         },
         {"c.tif", "non-integer", "i=1, j=0"});
@@ -83,7 +83,7 @@ TEST(WriteGeotiff, NanIsRefusedAndNoFileIsLeft) {
     v[1 * 4 + 2] = std::numeric_limits<double>::quiet_NaN();
     expect_error<OutputError>(
         [&] {
-            write_geotiff(tmp.file("bad.tif"), geo, v, BandInfo{"v", "m", -9999.0, {}});
+            write_geotiff(tmp.file("bad.tif"), geo, v, BandInfo{"v", "m", -9999.0, {}, {}});
         },
         {"bad.tif", "non-finite", "i=2, j=1"});
     EXPECT_FALSE(std::filesystem::exists(tmp.file("bad.tif")));

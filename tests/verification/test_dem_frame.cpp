@@ -102,7 +102,9 @@ void compare_frames(double slope_deg, Scheme scheme, EarthPressureModel ep, cons
         const double dtc = stc.stable_dt(sc), dtd = std_.stable_dt(sd);
         // The DEM gradient is a difference of elevations near 2000 m, so the slope
         // carries a relative round-off of about eps * 2000 / (2 dx tan) ~ 1e-13.
-        if (step == 0) ASSERT_NEAR(dtc, dtd, 1e-10 * dtc) << "the CFL steps of the two frames coincide";
+        if (step == 0) {
+            ASSERT_NEAR(dtc, dtd, 1e-10 * dtc) << "the CFL steps of the two frames coincide";
+        }
         stc.step(sc, dtc);
         std_.step(sd, dtc);
         t += dtc;

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,43 @@ double total_volume(const State& s, const Grid& g);
 // Throws NumericalError naming the first non-finite or negative cell in the box.
 void check_state(const State& s, const Grid& g, const ActiveBox& box, double t);
 
+// Everything the time loop carries from one step to the next, besides the state and
+// the observers: a run restored from it at a step boundary takes the same steps, bit
+// for bit, as the run that saved it (dt is a function of the state alone).
+struct LoopState {
+    double t = 0.0;                   // simulated time (s)
+    std::uint64_t steps = 0;
+    std::uint64_t outputs_done = 1;   // snapshot k is at t = k * output_interval
+    double next_output = 0.0;         // s
+    double last_output_t = 0.0;       // s
+    double ke_max = 0.0;              // running maximum of the kinetic energy
+    double quiet_since = -1.0;        // s since when KE < stop_ke_fraction x ke_max; < 0: not quiet
+    double released_volume = 0.0;     // m^3 at t = 0
+    double outflow_volume = 0.0;      // m^3 through open edges and sinks so far
+    std::uint64_t cell_updates = 0;   // so far
+    double next_checkpoint = 0.0;     // s; 0 when checkpoints are off
+    // The stepper's energy cap budget (Stepper::energy_budget), fixed by the first step;
+    // +infinity before it.
+    double energy_budget = std::numeric_limits<double>::infinity();
+};
+
+// A checkpoint as the loop hands it to its writer: the loop state, the state arrays
+// (with ghost cells, exactly as the next step reads them) and every observer's data.
+struct SimulationCheckpoint {
+    LoopState loop;
+    const State& state;
+    CheckpointData observers;
+};
+
+// What a numerical fault leaves for diagnosis: the state after the last good step
+// (with its loop state) and the state the failing step produced.
+struct FaultReport {
+    LoopState last_good_loop;
+    const State& last_good;
+    const State& failing;
+    std::string what;  // the NumericalError message
+};
+
 class Simulation {
 public:
     Simulation(Grid grid, const TerrainFields& terrain, MaterialParams material, NumericsParams numerics,
@@ -60,6 +98,24 @@ public:
     // returning false interrupts the run (signals).
     void set_progress(std::function<bool(double)> p) { progress_ = std::move(p); }
 
+    // Checkpoints every `interval` simulated seconds (0: only when interrupted), at a
+    // step boundary; `write` must not change anything the run depends on.
+    void set_checkpointing(double interval, std::function<void(const SimulationCheckpoint&)> write) {
+        checkpoint_interval_ = interval;
+        write_checkpoint_ = std::move(write);
+    }
+    // Continue from a checkpoint instead of t = 0: state arrays (with ghosts) as
+    // saved, the loop state, and every attached observer's restore(). Call after
+    // add_observer and before run(); on_start and the t = 0 output are skipped.
+    void resume(const LoopState& loop, const std::vector<double>& h, const std::vector<double>& hu,
+                const std::vector<double>& hv, const CheckpointData& observers);
+    // Called with the last good and the failing state before a NumericalError
+    // leaves run().
+    void set_fault_handler(std::function<void(const FaultReport&)> f) { on_fault_ = std::move(f); }
+    // Test hook: after step `step`, one wet cell becomes NaN, as a real fault would
+    // (exercises the fault path end to end; 0 = off).
+    void inject_fault_after_step(std::uint64_t step) { inject_fault_step_ = step; }
+
     RunStatistics run();
 
     [[nodiscard]] const State& state() const { return state_; }
@@ -70,6 +126,8 @@ private:
     [[nodiscard]] double kinetic_energy() const;
     [[nodiscard]] bool all_at_rest() const;
     void drain_sinks();
+    void remember_last_good();
+    [[noreturn]] void report_fault(const LoopState& last_good, const std::string& what);
 
     Grid grid_;
     const TerrainFields& terrain_;
@@ -80,6 +138,16 @@ private:
     std::vector<StepObserver*> observers_;
     std::vector<std::uint8_t> sinks_;
     std::function<bool(double)> progress_;
+    double checkpoint_interval_ = 0.0;
+    std::function<void(const SimulationCheckpoint&)> write_checkpoint_;
+    std::function<void(const FaultReport&)> on_fault_;
+    std::uint64_t inject_fault_step_ = 0;
+    bool resumed_ = false;
+    LoopState loop_;  // initial loop state (t = 0, or the checkpoint's)
+    // Cells [box) of the state before the current step, so that a fault can report
+    // the last good state without copying the whole grid every step.
+    ActiveBox saved_box_;
+    std::vector<double> saved_h_, saved_hu_, saved_hv_;
 };
 
 // The automatic thin-layer depth: h_min_relative x the deepest initial cell

@@ -17,6 +17,8 @@ struct BandInfo {
     std::string units;        // e.g. "m", "m/s", "kPa", "s" (GDALRasterBand::SetUnitType)
     double nodata = -9999.0;  // cells equal to this are nodata; must fit the sample type
     std::map<std::string, std::string> metadata;  // band metadata (thickness kind, config hash)
+    // Dataset-level metadata (gdalinfo "Metadata:"), e.g. AVALANCHE_COMPLETE=YES|NO.
+    std::map<std::string, std::string> dataset_metadata;
 };
 
 // Writes `values` (solver orientation: index j*nx + i, j = 0 = south) as a COG:

@@ -41,6 +41,14 @@ class ResultsWriter : public StepObserver {
     // Writes the end-of-run attributes, closes the file and renames it into place.
     void finish(const RunStatistics& stats);
 
+    // Checkpoints: copies the snapshots written so far into the open HDF5 file `file`
+    // (an hid_t) as /results/{time,h,u,v}; `file_path` names it in errors.
+    void copy_snapshots_to(std::int64_t file, const std::string& file_path) const;
+    // Resume: replaces the (empty) snapshots by those saved in `checkpoint_path`, so
+    // the run continues appending after them; throws InputError if they are not there
+    // or do not fit the grid.
+    void resume_from(const std::string& checkpoint_path);
+
     [[nodiscard]] std::size_t snapshots() const;
     [[nodiscard]] const std::string& path() const { return final_path_; }
 

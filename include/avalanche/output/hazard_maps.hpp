@@ -45,9 +45,10 @@ public:
 
     static constexpr double kNotReached = -1.0;
 
-    // Restores accumulated maps (checkpoint resume).
-    void restore(std::vector<double> max_depth, std::vector<double> max_speed, std::vector<double> max_pressure,
-                 std::vector<double> arrival);
+    // Checkpoints: the maxima and arrival times so far ("hazard_maps/..."); the
+    // deposit is taken from the state at the end, so it is not saved.
+    void save(CheckpointData& c) const override;
+    void restore(const CheckpointData& c) override;
 
 private:
     void accumulate(const SimulationView& v, int i0, int i1, int j0, int j1);

@@ -35,6 +35,10 @@ public:
     // series()[p] is the time series of point p.
     [[nodiscard]] const std::vector<std::vector<ProbeSample>>& series() const { return series_; }
 
+    // Checkpoints: the series so far and the next sampling time ("monitoring/...").
+    void save(CheckpointData& c) const override;
+    void restore(const CheckpointData& c) override;
+
 private:
     void sample(const SimulationView& v);
 
