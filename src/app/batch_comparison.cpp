@@ -96,6 +96,48 @@ LinePlot trend_plot(const std::vector<const BatchResult*>& rows, const SweepPara
     return plot;
 }
 
+// The fit columns (jaccard, runout_error_m, fit_score, fit_rank), each with a leading
+// comma; numbers in JSON's shortest round-trip spelling, as the other columns.
+std::string fit_cells(const std::optional<ScenarioFit>& f) {
+    if (!f) return ",,,,";
+    std::ostringstream s;
+    s << ',' << nlohmann::json(f->jaccard).dump() << ',' << nlohmann::json(f->runout_error_m).dump()
+      << ',' << nlohmann::json(f->score).dump() << ',' << f->rank;
+    return s.str();
+}
+
+// comparison.md's ranking against the observed deposit, best first.
+std::string ranking_section(const std::vector<const BatchResult*>& rows,
+                            const std::string& observed) {
+    std::vector<const BatchResult*> ranked;
+    for (const auto* r : rows)
+        if (r->fit) ranked.push_back(r);
+    std::sort(ranked.begin(), ranked.end(), [](const BatchResult* a, const BatchResult* b) {
+        return a->fit->rank < b->fit->rank;
+    });
+    std::ostringstream md;
+    md << "\n## Fit to the observed deposit\n\nObserved: `" << observed << "`. ";
+    if (ranked.empty()) {
+        md << "No scenario completed, so none is ranked.\n";
+        return md.str();
+    }
+    // Ids can be long (many swept parameters): only the numbers go through snprintf.
+    char buf[96];
+    const ScenarioFit& best = *ranked.front()->fit;
+    std::snprintf(buf, sizeof buf, "(Jaccard %.3f, runout error %+.1f m)", best.jaccard,
+                  best.runout_error_m);
+    md << "Best fit: **" << ranked.front()->batch_case->id << "** " << buf
+       << ". Score = (1 - Jaccard) + |runout error| / observed runout; lower is better "
+          "(docs/batch.md, `calibration.json`).\n\n| rank | id | Jaccard | runout error (m) | "
+          "score |\n|---|---|---|---|---|\n";
+    for (const auto* r : ranked) {
+        std::snprintf(buf, sizeof buf, " | %.3f | %+.1f | %.3f |\n", r->fit->jaccard,
+                      r->fit->runout_error_m, r->fit->score);
+        md << "| " << r->fit->rank << " | " << r->batch_case->id << buf;
+    }
+    return md.str();
+}
+
 }  // namespace
 
 std::vector<const SweepParameter*> swept_parameters(const std::vector<BatchResult>& rows) {
@@ -107,7 +149,8 @@ std::vector<const SweepParameter*> swept_parameters(const std::vector<BatchResul
 
 std::vector<std::string> write_comparison(const std::string& dir,
                                           const std::vector<BatchResult>& results,
-                                          const std::string& base_scenario) {
+                                          const std::string& base_scenario,
+                                          const std::string& observed) {
     const std::filesystem::path d(dir);
     std::vector<const BatchResult*> rows;
     for (const auto& r : results) rows.push_back(&r);
@@ -123,6 +166,8 @@ std::vector<std::string> write_comparison(const std::string& dir,
     for (const auto& [column, key] : kRunoutColumns) csv << "," << column;
     csv << ",end_reason";
     for (const auto& name : points) csv << "," << csv_cell("arrival_s_" + name);
+    const bool calibrated = !observed.empty();
+    if (calibrated) csv << ",jaccard,runout_error_m,fit_score,fit_rank";
     csv << ",wall_s\n";
     for (const auto* r : rows) {
         csv << r->batch_case->id;
@@ -132,10 +177,13 @@ std::vector<std::string> write_comparison(const std::string& dir,
             for (const auto& [column, key] : kRunoutColumns) csv << "," << cell(runout.at(key));
             csv << "," << cell(r->summary->at("end_reason"));
             for (const auto& name : points) csv << "," << cell(arrival_at(*r->summary, name));
+            if (calibrated) csv << fit_cells(r->fit);
             csv << "," << cell(r->summary->at("wall_s")) << "\n";
         } else {
             for (std::size_t k = 0; k < std::size(kRunoutColumns); ++k) csv << ",";
-            csv << ",failed" << std::string(points.size(), ',') << ",\n";
+            csv << ",failed" << std::string(points.size(), ',');
+            if (calibrated) csv << ",,,,";
+            csv << ",\n";
         }
     }
     write_file_atomically((d / "comparison.csv").string(), csv.str());
@@ -198,6 +246,7 @@ std::vector<std::string> write_comparison(const std::string& dir,
           "cell), `envelope_max_depth.tif`, `envelope_max_velocity.tif`, "
           "`envelope_max_pressure.tif`, `envelope_min_arrival_time.tif`; all values in "
           "`comparison.csv`.\n";
+    if (calibrated) md << ranking_section(rows, observed);
     if (!plots.empty()) {
         md << "\n";
         for (const auto& p : plots) md << "![" << p << "](" << p << ")\n";

@@ -1,5 +1,6 @@
 // `avalanche-hazard batch`: plan the scenarios, skip those a previous batch completed,
-// prepare each distinct scene once, run the rest N at a time, then compare them.
+// prepare each distinct scene once, run the rest N at a time (on every MPI rank when
+// launched by mpirun), then compare them on rank 0.
 #include "batch_run.hpp"
 
 #include <spdlog/spdlog.h>
@@ -17,11 +18,15 @@
 #include "avalanche/app/batch_manifest.hpp"
 #include "avalanche/app/batch_plan.hpp"
 #include "avalanche/app/prepared_scene.hpp"
+#include "avalanche/app/report_html.hpp"
 #include "avalanche/app/scenario_overrides.hpp"
 #include "avalanche/core/error.hpp"
 #include "avalanche/io/effective_config.hpp"
+#include "batch_calibration.hpp"
+#include "batch_mpi.hpp"
 #include "batch_outputs.hpp"
 #include "interrupt.hpp"
+#include "logging.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -40,6 +45,9 @@ struct Planned {
     bool skip = false;
     std::shared_ptr<const PreparedScene> scene;
 };
+
+// Prepared scenes by scene_key: material and numerics cases share the base scene.
+using SceneCache = std::map<std::string, std::shared_ptr<const PreparedScene>>;
 
 std::vector<BatchCase> plan_cases(const BatchArguments& a) {
     if (a.sweeps.empty() == a.table.empty())
@@ -98,14 +106,15 @@ Manifest decide_skips(std::vector<Planned>& planned, const Manifest& old) {
     return manifest;
 }
 
-// One preparation per distinct scene: material and numerics cases share the base scene.
-void attach_scenes(std::vector<Planned*>& pending) {
-    std::map<std::string, std::shared_ptr<const PreparedScene>> scenes;
-    for (auto* p : pending) {
-        auto& scene = scenes[scene_key(p->batch_case)];
-        if (!scene) scene = std::make_shared<const PreparedScene>(prepare_scene(p->scenario));
-        p->scene = scene;
-    }
+const std::shared_ptr<const PreparedScene>& scene_of(const Planned& p, SceneCache& scenes) {
+    auto& scene = scenes[scene_key(p.batch_case)];
+    if (!scene) scene = std::make_shared<const PreparedScene>(prepare_scene(p.scenario));
+    return scene;
+}
+
+// One preparation per distinct scene (reusing those prepared already, e.g. for --observed).
+void attach_scenes(std::vector<Planned*>& pending, SceneCache& scenes) {
+    for (auto* p : pending) p->scene = scene_of(*p, scenes);
     if (!pending.empty())
         spdlog::info("prepared {} scene(s) for {} scenario(s)", scenes.size(), pending.size());
 }
@@ -116,18 +125,22 @@ struct Failure {
 };
 
 // Runs the pending scenarios `workers` at a time. omp_set_num_threads sets the calling
-// thread's value only, so each worker sets it for the solver loops it starts.
+// thread's value only, so each worker sets it for the solver loops it starts. The cores
+// are shared with the other MPI ranks on the machine (`ranks_on_node`). Only the process
+// that owns the manifest (rank 0) rewrites it as scenarios finish.
 std::vector<Failure> run_pending(const std::vector<Planned*>& pending, Manifest& manifest,
                                  const std::string& manifest_path, const nlohmann::json& batch,
-                                 int parallel, const GlobalOptions& global) {
+                                 int parallel, int ranks_on_node, bool owns_manifest,
+                                 const GlobalOptions& global) {
+    if (pending.empty()) return {};  // e.g. an MPI rank with no share of the scenarios
     const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 #ifdef _OPENMP
     // The thread budget: OMP_NUM_THREADS when the user set it, else every core.
-    const int budget = std::max(1, omp_get_max_threads());
+    const int budget = std::max(1, omp_get_max_threads() / ranks_on_node);
 #else
-    const int budget = cores;
+    const int budget = std::max(1, cores / ranks_on_node);
 #endif
-    const int workers = std::clamp(parallel > 0 ? parallel : cores, 1,
+    const int workers = std::clamp(parallel > 0 ? parallel : std::max(1, cores / ranks_on_node), 1,
                                    std::max(1, static_cast<int>(pending.size())));
     const int omp_threads = std::max(1, budget / workers);
     spdlog::info("running {} scenario(s), {} at a time, {} OpenMP thread(s) each", pending.size(),
@@ -136,6 +149,9 @@ std::vector<Failure> run_pending(const std::vector<Planned*>& pending, Manifest&
     std::atomic<std::size_t> next{0};
     std::size_t finished = 0;
     std::vector<Failure> failures;
+    auto save_manifest = [&] {
+        if (owns_manifest) write_manifest(manifest_path, manifest, batch);
+    };
     auto work = [&] {
 #ifdef _OPENMP
         omp_set_num_threads(omp_threads);
@@ -143,6 +159,8 @@ std::vector<Failure> run_pending(const std::vector<Planned*>& pending, Manifest&
         for (std::size_t k; (k = next++) < pending.size() && !InterruptGuard::requested();) {
             const Planned& p = *pending[k];
             const std::string& id = p.batch_case.id;
+            // Every log line of this scenario, from this thread, names it.
+            const ScopedLogContext context(id);
             try {
                 std::error_code ec;
                 fs::remove_all(p.dir, ec);  // no stale product of an older configuration
@@ -154,17 +172,18 @@ std::vector<Failure> run_pending(const std::vector<Planned*>& pending, Manifest&
                 const bool done = outcome.stats.end_reason != EndReason::interrupted;
                 manifest[id].complete = done;
                 manifest[id].error.clear();
-                write_manifest(manifest_path, manifest, batch);
-                spdlog::info("finished {} ({} of {}){}", id, ++finished, pending.size(),
+                save_manifest();
+                spdlog::info("finished ({} of {}){}", ++finished, pending.size(),
                              done ? "" : ": interrupted");
             } catch (const std::exception& e) {
                 const auto* err = dynamic_cast<const Error*>(&e);
                 const std::lock_guard lock(mutex);
                 failures.push_back({id, e.what(), err ? err->code() : ExitCode::internal});
+                manifest[id].complete = false;
                 manifest[id].error = e.what();
-                spdlog::error("scenario {} failed: {}", id, e.what());
+                spdlog::error("failed: {}", e.what());
                 try {
-                    write_manifest(manifest_path, manifest, batch);
+                    save_manifest();
                 } catch (const std::exception&) {  // reported with the scenario's failure
                 }
             }
@@ -176,60 +195,151 @@ std::vector<Failure> run_pending(const std::vector<Planned*>& pending, Manifest&
     return failures;
 }
 
+// What a rank sends rank 0 after its runs: each of its scenarios' outcome.
+std::string rank_report(const std::vector<Planned*>& mine, Manifest& manifest,
+                        const std::vector<Failure>& failures) {
+    nlohmann::json r = {{"scenarios", nlohmann::json::array()},
+                        {"failures", nlohmann::json::array()},
+                        {"interrupted", InterruptGuard::requested()}};
+    for (const auto* p : mine) {
+        const auto& e = manifest[p->batch_case.id];
+        r["scenarios"].push_back(
+            {{"id", p->batch_case.id}, {"complete", e.complete}, {"error", e.error}});
+    }
+    for (const auto& f : failures)
+        r["failures"].push_back(
+            {{"id", f.id}, {"message", f.message}, {"code", static_cast<int>(f.code)}});
+    return r.dump();
+}
+
 std::optional<nlohmann::json> read_summary(const std::string& dir) {
     std::ifstream in(fs::path(dir) / "summary.json");
     if (!in) return std::nullopt;
     return nlohmann::json::parse(in);
 }
 
-}  // namespace
-
-int run_batch(const BatchArguments& args, const GlobalOptions& global) {
-    const std::vector<BatchCase> cases = plan_cases(args);
-    const Scenario base = assemble_scenario(args.scenario, {});
-    std::vector<Planned> planned;
-    for (const auto& c : cases) {
-        Planned p{c,     scenario_for_case(base, c),
-                  "",    (fs::path(args.out) / c.id).string(),
-                  false, nullptr};
-        p.hash = config_hash(effective_config(p.scenario));
-        planned.push_back(std::move(p));
-    }
-    prepare_batch_folder(args.out, args.overwrite);
-    const std::string manifest_path = (fs::path(args.out) / "manifest.json").string();
-    const nlohmann::json batch = {{"base_scenario", args.scenario},
-                                  {"sweeps", args.sweeps},
-                                  {"table", args.table},
-                                  {"software_version", software_version()}};
-    Manifest manifest =
-        decide_skips(planned, args.overwrite ? Manifest{} : read_manifest(manifest_path));
-    write_manifest(manifest_path, manifest, batch);
-
-    std::vector<Planned*> pending;
-    for (auto& p : planned)
-        if (!p.skip) pending.push_back(&p);
-    spdlog::info("batch of {} scenario(s): {} to compute, {} complete", planned.size(),
-                 pending.size(), planned.size() - pending.size());
-    attach_scenes(pending);
-    InterruptGuard interrupt;
-    const auto failures =
-        run_pending(pending, manifest, manifest_path, batch, args.parallel, global);
-
-    std::vector<BatchResult> results;
-    for (const auto& p : planned) {
-        BatchResult r{&p.batch_case, p.dir, std::nullopt, manifest[p.batch_case.id].error};
-        if (manifest[p.batch_case.id].complete) r.summary = read_summary(p.dir);
-        results.push_back(std::move(r));
-    }
-    auto files = write_comparison(args.out, results, args.scenario);
+// Every across-scenario output of DIR, from what the scenarios wrote into DIR/<id>/: the
+// one place where the comparison files are written (by one process: rank 0).
+void write_batch_outputs(const BatchArguments& args, std::vector<BatchResult>& results,
+                         const std::optional<Observation>& observation,
+                         const GlobalOptions& global) {
+    if (observation) fit_to_observation(*observation, results);
+    auto files = write_comparison(args.out, results, args.scenario, args.observed);
     const auto maps = write_envelopes(args.out, results);
     files.insert(files.end(), maps.begin(), maps.end());
+    if (observation) files.push_back(write_calibration(args.out, *observation, results));
+    for (const auto& f : write_batch_report_html(args.out, args.scenario)) files.push_back(f);
     spdlog::info("wrote {} comparison file(s) into {}", files.size(), args.out);
     if (!global.quiet)
         std::cout << "comparison: " << (fs::path(args.out) / "comparison.csv").string()
                   << "\nreport: " << (fs::path(args.out) / "comparison.md").string() << "\n";
+}
 
-    if (InterruptGuard::requested())
+int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const GlobalOptions& global) {
+    // Planning is deterministic, so every rank plans the same batch (and refuses the same
+    // bad values; all_or_none lets only rank 0 say so).
+    std::vector<BatchCase> cases;
+    std::vector<Planned> planned;
+    Scenario base;
+    ranks.all_or_none([&] {
+        cases = plan_cases(args);
+        base = assemble_scenario(args.scenario, {});
+        for (const auto& c : cases) {
+            Planned p{c,     scenario_for_case(base, c),
+                      "",    (fs::path(args.out) / c.id).string(),
+                      false, nullptr};
+            p.hash = config_hash(effective_config(p.scenario));
+            planned.push_back(std::move(p));
+        }
+    });
+
+    // Rank 0 owns DIR: the observed deposit is checked before DIR is touched, so a bad
+    // --observed leaves no product behind.
+    const std::string manifest_path = (fs::path(args.out) / "manifest.json").string();
+    const nlohmann::json batch = {{"base_scenario", args.scenario},
+                                  {"sweeps", args.sweeps},
+                                  {"table", args.table},
+                                  {"observed", args.observed},
+                                  {"software_version", software_version()}};
+    SceneCache scenes;
+    std::optional<Observation> observation;
+    Manifest manifest;
+    ranks.all_or_none([&] {
+        if (!ranks.root()) return;
+        if (!args.observed.empty())
+            observation = load_observation(args.observed, *scene_of(planned.front(), scenes),
+                                           base.output.h_threshold);
+        prepare_batch_folder(args.out, args.overwrite);
+        manifest =
+            decide_skips(planned, args.overwrite ? Manifest{} : read_manifest(manifest_path));
+        write_manifest(manifest_path, manifest, batch);
+    });
+    std::string skips;
+    for (const auto& p : planned) skips += p.skip ? '1' : '0';
+    skips = ranks.broadcast(skips);
+    for (std::size_t k = 0; k < planned.size(); ++k) planned[k].skip = skips[k] == '1';
+
+    // Static round-robin over the ranks: pending scenario k runs on rank k mod N.
+    std::vector<Planned*> pending, mine;
+    for (auto& p : planned)
+        if (!p.skip) pending.push_back(&p);
+    for (std::size_t k = 0; k < pending.size(); ++k)
+        if (static_cast<int>(k % static_cast<std::size_t>(ranks.size())) == ranks.rank())
+            mine.push_back(pending[k]);
+    if (ranks.root())
+        spdlog::info("batch of {} scenario(s): {} to compute, {} complete", planned.size(),
+                     pending.size(), planned.size() - pending.size());
+    if (ranks.size() > 1)
+        spdlog::info("MPI rank {} of {}: {} scenario(s)", ranks.rank(), ranks.size(), mine.size());
+    ranks.all_or_none([&] { attach_scenes(mine, scenes); });
+    InterruptGuard interrupt;
+    std::vector<Failure> failures = run_pending(mine, manifest, manifest_path, batch, args.parallel,
+                                                ranks.ranks_on_node(), ranks.root(), global);
+
+    // Rank 0 learns every rank's outcomes, records them, and decides the exit code.
+    const auto reports = ranks.gather(rank_report(mine, manifest, failures));
+    bool interrupted = false;
+    if (ranks.root() && ranks.size() > 1) {
+        failures.clear();
+        for (const auto& text : reports) {
+            const auto r = nlohmann::json::parse(text);
+            interrupted = interrupted || r.at("interrupted").get<bool>();
+            for (const auto& s : r.at("scenarios")) {
+                auto& e = manifest[s.at("id").get<std::string>()];
+                e.complete = s.at("complete").get<bool>();
+                e.error = s.at("error").get<std::string>();
+            }
+            for (const auto& f : r.at("failures"))
+                failures.push_back({f.at("id").get<std::string>(),
+                                    f.at("message").get<std::string>(),
+                                    static_cast<ExitCode>(f.at("code").get<int>())});
+        }
+        // The first failure in the batch's own order, whichever rank ran it.
+        std::stable_sort(failures.begin(), failures.end(), [&](const Failure& a, const Failure& b) {
+            auto at = [&](const std::string& id) {
+                return std::find_if(planned.begin(), planned.end(),
+                                    [&](const Planned& p) { return p.batch_case.id == id; }) -
+                       planned.begin();
+            };
+            return at(a.id) < at(b.id);
+        });
+        write_manifest(manifest_path, manifest, batch);
+    }
+    interrupted = interrupted || InterruptGuard::requested();
+    const int code = ranks.broadcast_code(
+        interrupted ? static_cast<int>(ExitCode::interrupted)
+                    : (failures.empty() ? 0 : static_cast<int>(failures.front().code)));
+    if (!ranks.root()) return code;  // rank 0 writes DIR and reports
+
+    std::vector<BatchResult> results;
+    for (const auto& p : planned) {
+        BatchResult r{&p.batch_case, p.dir, std::nullopt, manifest[p.batch_case.id].error, {}};
+        if (manifest[p.batch_case.id].complete) r.summary = read_summary(p.dir);
+        results.push_back(std::move(r));
+    }
+    write_batch_outputs(args, results, observation, global);
+
+    if (interrupted)
         throw Error(ExitCode::interrupted,
                     "interrupted; rerun the same command to resume from " + manifest_path);
     if (!failures.empty())
@@ -238,6 +348,17 @@ int run_batch(const BatchArguments& args, const GlobalOptions& global) {
                                                " scenario(s) failed; first " + failures.front().id +
                                                ": " + failures.front().message);
     return 0;
+}
+
+}  // namespace
+
+int run_batch(const BatchArguments& args, const GlobalOptions& global) {
+    const BatchRanks ranks;  // MPI_Init only when launched by mpirun/srun
+    try {
+        return run_batch_on(ranks, args, global);
+    } catch (const QuietRankExit& e) {
+        return e.code;
+    }
 }
 
 }  // namespace avalanche::detail

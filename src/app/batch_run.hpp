@@ -13,9 +13,12 @@ struct BatchArguments {
     std::string table;                // "--table FILE.csv" instead of sweeps
     std::string out;
     bool overwrite = false;
-    int parallel = 0;  // scenarios at a time; 0 = number of cores
+    int parallel = 0;      // scenarios at a time (per MPI rank); 0 = its share of the cores
+    std::string observed;  // "--observed FILE": polygons of an observed deposit
 };
 
+// One process, or one rank of an MPI launch (batch_mpi.hpp): rank 0 plans, decides the
+// skips and writes every file of DIR; each rank runs its share of the scenarios.
 int run_batch(const BatchArguments& args, const GlobalOptions& global);
 
 }  // namespace avalanche::detail

@@ -23,14 +23,20 @@ Command add_batch_command(CLI::App& app, const GlobalOptions& global) {
     cmd->add_flag("--overwrite", args->overwrite,
                   "Recompute every scenario, even those a previous batch completed");
     cmd->add_option("--parallel", args->parallel,
-                    "Scenarios run at a time (default: number of cores)")
+                    "Scenarios run at a time per process (default: its share of the cores)")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--observed", args->observed,
+                    "Polygons of an observed deposit (any OGR format and CRS): rank the "
+                    "scenarios by fit (comparison.csv, calibration.json)");
     // clang-format off
     cmd->footer(
         "Examples:\n"
         "  avalanche-hazard batch --scenario base.toml --sweep delta=10,12.5,15,20 \\\n"
         "      --sweep phi=25:35:5 --out out/sweep\n"
         "  avalanche-hazard batch --scenario base.toml --table scenarios.csv --out out/table\n"
+        "  avalanche-hazard batch --scenario base.toml --sweep delta=15:30:5 \\\n"
+        "      --observed deposit.shp --out out/calibration\n"
+        "  mpirun -n 8 avalanche-hazard batch ... (scenarios spread over the ranks)\n"
         "Rerunning the same command resumes: complete scenarios with an unchanged\n"
         "configuration are skipped (DIR/manifest.json). See docs/batch.md.");
     // clang-format on

@@ -64,4 +64,16 @@ inline std::vector<std::vector<std::string>> read_csv(const std::string& path) {
     return rows;
 }
 
+// Runs `command` (a whole shell command line, e.g. an mpirun launch of the binary) with
+// stdout and stderr captured, like run_binary.
+inline ProcessResult run_command(const ScratchDir& dir, const std::string& command) {
+    const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+    const int status = std::system((command + " >'" + out + "' 2>'" + err + "'").c_str());
+    ProcessResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read_text(out);
+    r.err = read_text(err);
+    return r;
+}
+
 }  // namespace avalanche::test
