@@ -12,6 +12,7 @@
 #include "avalanche/gis/dem.hpp"
 #include "avalanche/gis/points.hpp"
 #include "avalanche/gis/release.hpp"
+#include "avalanche/io/memory_limit.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 
@@ -29,14 +30,14 @@ std::vector<double> release_thickness(const Scenario& s, const gis::Dem& dem, st
         // Only a volume: rasterize with a unit thickness, scaled below.
         if (!opts.thickness && opts.thickness_field.empty() && poly->volume) opts.thickness = 1.0;
         gis::Release r = gis::rasterize_release_polygons(poly->path, dem.geo, opts);
-        gis::check_release_on_valid_dem(r, dem);
+        gis::check_release_on_valid_dem(r, dem, poly->path);
         notes.push_back(r.description_of_steps);
         files.push_back(poly->path);
         return std::move(r.thickness);
     }
     if (const auto* raster = std::get_if<RasterReleaseSpec>(&s.release)) {
         std::vector<double> t = gis::read_release_raster(raster->path, dem.geo);
-        gis::check_release_on_valid_dem(t, dem);
+        gis::check_release_on_valid_dem(t, dem, raster->path);
         notes.push_back("Read the release thickness raster " + raster->path + ".");
         files.push_back(raster->path);
         return t;
@@ -54,6 +55,12 @@ PreparedScene prepare_dem_scene(const Scenario& s) {
     gis::DemOptions opts;
     opts.crs = spec.crs;
     opts.cell_size = s.cell_size;
+    opts.cell_size_factor = s.cell_size_factor;
+    // The grid is refused from the DEM headers if it would not fit (docs/gis.md step 4).
+    const MemoryLimit memory = memory_limit();
+    opts.max_solver_bytes = memory.bytes;
+    opts.memory_limit_source = memory.source;
+    opts.solver_bytes_per_cell = kSolverBytesPerCell;
     const gis::Dem dem = gis::load_dem(spec.dem_paths, opts);
     p.input_notes.push_back(dem.description_of_steps);
     p.input_files = spec.dem_paths;

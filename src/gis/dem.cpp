@@ -122,6 +122,7 @@ Dem load_dem(const std::vector<std::string>& paths, const DemOptions& opts) {
     std::vector<detail::DemTile> tiles;
     for (const auto& path : paths) tiles.push_back(detail::open_dem_tile(path, user_crs, errors));
     const detail::GridPlan plan = detail::plan_dem_grid(tiles, user_crs, opts);
+    for (auto& tile : tiles) detail::scan_dem_tile(tile);  // only once the grid fits
     if (plan.same_as_source) resampling = "near";  // exact copy of the source cells
 
     std::vector<detail::DatasetPtr> owned;
@@ -152,7 +153,7 @@ Dem load_dem(const std::vector<std::string>& paths, const DemOptions& opts) {
 
 void write_dem(const std::string& path, const Dem& dem) {
     // nodata is declared for QGIS but never present: every void is filled.
-    BandInfo band{"elevation of the computational grid", "m", -9999.0, {}};
+    BandInfo band{"elevation of the computational grid", "m", -9999.0, {}, {}};
     band.metadata["FILLED_VOIDS"] = std::to_string(dem.filled_voids);
     band.metadata["FILLED_HOLES"] = std::to_string(dem.filled_holes);
     band.metadata["FILLED_OUTSIDE_FOOTPRINT"] = std::to_string(dem.filled_outside);

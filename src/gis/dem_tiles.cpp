@@ -14,6 +14,7 @@ namespace avalanche::gis::detail {
 namespace {
 
 constexpr int kScanRows = 256;            // rows per read while scanning a tile
+constexpr int kScanStripValues = 1 << 22; // at most this many values per read
 constexpr double kAlignTolerance = 1e-6;  // in cells: origins this close are "aligned"
 constexpr int kDensifyPoints = 21;        // points per edge when reprojecting a bounding box
 // Land elevations never reach this (m); values at or below it are void markers.
@@ -24,11 +25,13 @@ void scan_values(DemTile& tile) {
     int has_nodata = 0;
     const double nodata = band->GetNoDataValue(&has_nodata);
     const int nx = tile.ds->GetRasterXSize(), ny = tile.ds->GetRasterYSize();
-    std::vector<double> strip(static_cast<std::size_t>(nx) * kScanRows);
+    // Fewer rows per strip for very wide rasters: the strip buffer stays ~32 MB.
+    const int strip_rows = std::clamp(kScanStripValues / std::max(nx, 1), 1, kScanRows);
+    std::vector<double> strip(static_cast<std::size_t>(nx) * strip_rows);
     tile.z_min = std::numeric_limits<double>::infinity();
     tile.z_max = -tile.z_min;
-    for (int row = 0; row < ny; row += kScanRows) {
-        const int rows = std::min(kScanRows, ny - row);
+    for (int row = 0; row < ny; row += strip_rows) {
+        const int rows = std::min(strip_rows, ny - row);
         if (band->RasterIO(GF_Read, 0, row, nx, rows, strip.data(), nx, rows, GDT_Float64, 0, 0,
                            nullptr) != CE_None)
             throw InputError(tile.path, "cannot read rows " + std::to_string(row) + "-" +
@@ -134,6 +137,11 @@ DemTile open_dem_tile(const std::string& path, const OGRSpatialReference& user_c
                          "has no coordinate reference system; give the DEM's CRS "
                          "(option crs, e.g. EPSG:31287)");
     }
+    return tile;
+}
+
+void scan_dem_tile(DemTile& tile) {
+    const std::string& path = tile.path;
     scan_values(tile);
     if (tile.valid_cells == 0)
         throw InputError(path, "contains no valid elevation (every cell is nodata or NaN)");
@@ -145,7 +153,6 @@ DemTile open_dem_tile(const std::string& path, const OGRSpatialReference& user_c
         throw InputError(path, "has elevations of " + std::to_string(tile.z_min) +
                                    " m but declares no nodata value; declare the void "
                                    "marker (gdal_edit.py -a_nodata <value>)");
-    return tile;
 }
 
 GridPlan plan_dem_grid(const std::vector<DemTile>& tiles, const OGRSpatialReference& user_crs,
@@ -185,6 +192,8 @@ GridPlan plan_dem_grid(const std::vector<DemTile>& tiles, const OGRSpatialRefere
         } else {
             dx = dy = metric_spacing(first, target);
         }
+        dx *= opts.cell_size_factor;
+        dy *= opts.cell_size_factor;
     }
     const double anchor_x = first_native ? first.gt[0] : 0.0;
     const double anchor_y = first_native ? first.gt[3] : 0.0;
@@ -207,17 +216,23 @@ GridPlan plan_dem_grid(const std::vector<DemTile>& tiles, const OGRSpatialRefere
     const double top = anchor_y + std::ceil((y_max - anchor_y) / dy - kAlignTolerance) * dy;
     const double nx = std::round((right - left) / dx), ny = std::round((top - bottom) / dy);
 
+    // The memory estimate, before anything of the grid's size is allocated or read (a
+    // header can declare 200000 x 200000 cells in a few hundred bytes). The DEM is
+    // named: it is the input that does not fit (or the cell size asked of it).
     const double cells = nx * ny;
     const double bytes = cells * opts.solver_bytes_per_cell;
     if (bytes > opts.max_solver_bytes || nx > std::numeric_limits<int>::max() / 2 ||
         ny > std::numeric_limits<int>::max() / 2) {
         std::ostringstream msg;
         msg.precision(3);
-        msg << "a " << nx << " x " << ny << " grid at " << dx << " m needs about "
+        msg << "a " << static_cast<long long>(nx) << " x " << static_cast<long long>(ny)
+            << " grid of " << dx << " m cells (cell_size) needs about "
             << bytes / (1u << 30) << " GiB of solver state (" << opts.solver_bytes_per_cell
-            << " B per cell), above the limit of " << opts.max_solver_bytes / (1u << 30)
-            << " GiB; choose a larger cell size or crop the DEM";
-        throw ConfigError("cell_size", msg.str());
+            << " B per cell), above the " << opts.max_solver_bytes / (1u << 30) << " GiB of "
+            << opts.memory_limit_source << "; choose a larger cell size or crop the DEM";
+        std::string files;
+        for (const DemTile& t : tiles) files += (files.empty() ? "" : ", ") + t.path;
+        throw InputError(files, msg.str());
     }
     plan.geo.grid = Grid{static_cast<int>(nx), static_cast<int>(ny), dx, dy, left, bottom};
     plan.geo.crs_wkt = to_wkt(target);

@@ -19,11 +19,15 @@ struct DemTile {
     double z_min = 0.0, z_max = 0.0;  // over the valid cells
 };
 
-// Opens a tile and reads it once in full: names the file when it is not a raster,
-// has no georeferencing or CRS, cannot be read to the end (truncated, corrupt) or
-// holds no valid elevation.
+// Opens a tile (header only): names the file when it is not a raster or has no
+// georeferencing or CRS.
 DemTile open_dem_tile(const std::string& path, const OGRSpatialReference& user_crs,
                       const GdalErrorScope& errors);
+
+// Reads an opened tile once in full (after the grid passed the memory check): names
+// the file when it cannot be read to the end (truncated, corrupt), holds no valid
+// elevation or has undeclared void markers.
+void scan_dem_tile(DemTile& tile);
 
 struct GridPlan {
     GeoGrid geo;
@@ -31,8 +35,8 @@ struct GridPlan {
     std::string crs_reason;       // why this CRS, for the description
 };
 
-// The target CRS, cell size and extent covering all tiles (checked against the
-// memory limit).
+// The target CRS, cell size and extent covering all tiles, checked against the
+// memory limit (InputError naming the DEM files and the estimate).
 GridPlan plan_dem_grid(const std::vector<DemTile>& tiles, const OGRSpatialReference& user_crs,
                        const DemOptions& opts);
 

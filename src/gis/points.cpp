@@ -46,9 +46,7 @@ bool parse_number(const std::string& text, double& value) {
     return ec == std::errc() && ptr == end && !text.empty() && std::isfinite(value);
 }
 
-std::vector<RawPoint> read_csv(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path, "cannot open the file");
+std::vector<RawPoint> read_csv(std::istream& in, const std::string& path) {
     std::string line;
     int number = 0;
     int col_name = -1, col_x = -1, col_y = -1;
@@ -89,6 +87,12 @@ std::vector<RawPoint> read_csv(const std::string& path) {
     return points;
 }
 
+std::vector<RawPoint> read_csv(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path, "cannot open the file");
+    return read_csv(in, path);
+}
+
 std::string name_of(OGRFeature& f) {
     for (const char* field : {"name", "NAME", "Name", "id", "ID", "Id"}) {
         const int k = f.GetFieldIndex(field);
@@ -126,6 +130,13 @@ std::vector<RawPoint> read_ogr(const std::string& path, const OGRSpatialReferenc
 }
 
 }  // namespace
+
+std::vector<CsvPoint> parse_points_csv(const std::string& text, const std::string& label) {
+    std::istringstream in(text);
+    std::vector<CsvPoint> out;
+    for (const RawPoint& p : read_csv(in, label)) out.push_back({p.name, p.x, p.y, p.where});
+    return out;
+}
 
 std::vector<MonitoringPoint> read_points(const std::string& path, const std::string& csv_crs,
                                          const GeoGrid& geo) {

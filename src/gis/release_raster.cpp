@@ -58,21 +58,24 @@ std::vector<double> read_release_raster(const std::string& path, const GeoGrid& 
     return h;
 }
 
-void check_release_on_valid_dem(const std::vector<double>& thickness, const Dem& dem) {
+void check_release_on_valid_dem(const std::vector<double>& thickness, const Dem& dem,
+                                const std::string& release_path) {
     if (thickness.size() != dem.filled_mask.size())
         throw Error(ExitCode::internal, "release and DEM grids differ in size");
     int on_voids = 0;
     for (std::size_t k = 0; k < thickness.size(); ++k)
         if (thickness[k] > 0.0 && dem.filled_mask[k] != 0) ++on_voids;
     if (on_voids > 0)
-        throw InputError("release", std::to_string(on_voids) +
-                                        " release cells lie on DEM voids that were filled by "
-                                        "interpolation (no measured elevation); move the release "
-                                        "or use a DEM without voids there");
+        throw InputError(release_path,
+                         std::to_string(on_voids) +
+                             " release cells lie on DEM voids that were filled by "
+                             "interpolation (no measured elevation); move the release "
+                             "or use a DEM without voids there");
 }
 
-void check_release_on_valid_dem(const Release& release, const Dem& dem) {
-    check_release_on_valid_dem(release.thickness, dem);
+void check_release_on_valid_dem(const Release& release, const Dem& dem,
+                                const std::string& release_path) {
+    check_release_on_valid_dem(release.thickness, dem, release_path);
 }
 
 }  // namespace avalanche::gis

@@ -4,6 +4,16 @@
 
 namespace avalanche::detail {
 
+namespace {
+// HDF5 closes every file still open when the process exits. A file whose last flush
+// failed (disk full, EFBIG under a file-size limit) cannot be closed, stays open, and
+// that exit-time close then crashed inside HDF5 (SIGSEGV in H5F__close_cb, measured
+// with HDF5 1.10 and RLIMIT_FSIZE) after the one-line error had been printed: exit 139
+// instead of 4. Our files are closed by their owners (Hid); a leaked one is only ever
+// a failed .part file. H5dont_atexit must run before the library initialises itself.
+[[maybe_unused]] const herr_t kNoExitTimeClose = H5dont_atexit();
+}  // namespace
+
 void h5_check(herr_t status, const std::string& file, const std::string& what) {
     if (status < 0) throw OutputError(file, "HDF5 could not " + what);
 }

@@ -72,6 +72,10 @@ void write_monitoring_hdf5(const std::string& path, const MonitoringPoints& poin
             write_series(group.get(), "speed", speed, "m/s", path);
             write_series(group.get(), "pressure", pressure, "kPa", path);
         }
+        // The data reach the disk here, not in the writes above: a full disk shows up as
+        // a failed flush, and the file must then not be renamed to its final name (the
+        // closer's own status is not checked).
+        h5_check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), path, "write the file (disk full?)");
     }
     std::error_code ec;
     std::filesystem::rename(part, path, ec);

@@ -1,8 +1,10 @@
 #include "avalanche/io/scenario.hpp"
 
 #include <cmath>
+#include <sstream>
 
 #include "avalanche/core/error.hpp"
+#include "avalanche/io/memory_limit.hpp"
 
 namespace avalanche {
 
@@ -12,7 +14,20 @@ void validate_terrain(const TerrainSpec& terrain, double cell_size) {
     if (const auto* chute = std::get_if<ChuteGeometry>(&terrain)) {
         validate(*chute);
         // chute_grid refuses a cell size that is not positive or does not divide the chute.
-        (void)chute_grid(*chute, cell_size);
+        const Grid g = chute_grid(*chute, cell_size);
+        // A chute too fine for the memory would end in std::bad_alloc (exit 70).
+        const double cells = static_cast<double>(g.nx) * static_cast<double>(g.ny);
+        const MemoryLimit memory = memory_limit();
+        if (cells * kSolverBytesPerCell > memory.bytes || cells > 1e9) {
+            std::ostringstream msg;
+            msg.precision(3);
+            msg << "a " << g.nx << " x " << g.ny << " chute grid needs about "
+                << cells * kSolverBytesPerCell / (1024.0 * 1024.0 * 1024.0)
+                << " GiB of solver state, above the "
+                << memory.bytes / (1024.0 * 1024.0 * 1024.0) << " GiB of " << memory.source
+                << "; choose a larger cell size";
+            throw ConfigError("numerics.cell_size", msg.str());
+        }
         return;
     }
     const auto& dem = std::get<DemTerrainSpec>(terrain);

@@ -176,7 +176,7 @@ Scenario parse_table(const toml::table& root, const std::string& label,
                                                             "numerics", "points",  "output"};
     for (const auto& [key, node] : root)
         if (!kTables.count(key.str()))
-            throw ConfigError(label + ": " + std::string(key.str()),
+            throw ConfigError(label + ": " + detail::printable(key.str()),
                               "unknown table or key (a scenario has [terrain], [release], "
                               "[material], [numerics], [points], [output])");
     const auto section = [&](const char* name) {
@@ -207,8 +207,9 @@ Scenario parse_scenario_text(const std::string& text, const std::string& label,
     try {
         root = toml::parse(text, label);
     } catch (const toml::parse_error& e) {
+        // The description quotes the offending bytes, newlines included.
         throw InputError(label, "line " + std::to_string(e.source().begin.line) + ": " +
-                                    std::string(e.description()));
+                                    detail::printable(e.description()));
     }
     return parse_table(root, label, base_dir);
 }

@@ -28,6 +28,29 @@ std::string describe_type(const toml::node& node) {
     return "nothing";
 }
 
+std::string printable(std::string_view text) {
+    static const char* kHex = "0123456789abcdef";
+    std::string out;
+    out.reserve(text.size());
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '\n') {
+            out += "\\n";
+        } else if (c == '\r') {
+            out += "\\r";
+        } else if (c == '\t') {
+            out += "\\t";
+        } else if (u < 0x20 || u == 0x7f) {
+            out += "\\x";
+            out += kHex[u >> 4];
+            out += kHex[u & 0xf];
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
 TomlSection::TomlSection(const toml::table* table, std::string name, std::string file_label)
     : table_(table), name_(std::move(name)), file_label_(std::move(file_label)) {}
 
@@ -36,7 +59,7 @@ bool TomlSection::has(std::string_view key) const {
 }
 
 void TomlSection::fail(std::string_view key, const std::string& what) const {
-    throw ConfigError(file_label_ + ": " + name_ + "." + std::string(key), what);
+    throw ConfigError(file_label_ + ": " + name_ + "." + printable(key), printable(what));
 }
 
 const toml::node* TomlSection::get(std::string_view key) {

@@ -57,4 +57,8 @@ class TomlSection {
 // "a string", "an integer", ... for "expected X, got Y" messages.
 std::string describe_type(const toml::node& node);
 
+// `text` with control characters escaped ("\n", "\x01"): keys, values and parser
+// messages quote the file's own bytes, and an error must stay one line (docs/cli.md).
+std::string printable(std::string_view text);
+
 }  // namespace avalanche::detail

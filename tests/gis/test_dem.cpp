@@ -202,7 +202,9 @@ TEST(LoadDem, OptionsAreChecked) {
     expect_error<ConfigError>([&] { load_dem({path}, opts); }, {"crs", "cannot interpret"});
     opts = DemOptions{};
     opts.max_solver_bytes = 1e6;  // 5000 cells at 200 B
-    expect_error<ConfigError>([&] { load_dem({path}, opts); }, {"cell_size", "GiB"});
+    // The DEM that does not fit is the input at fault (exit 3): named, with the estimate.
+    expect_error<InputError>([&] { load_dem({path}, opts); },
+                             {"avaKot_dem.tif", "cell_size", "GiB", "the default limit"});
     expect_error<ConfigError>([&] { load_dem({}); }, {"no DEM file"});
 }
 

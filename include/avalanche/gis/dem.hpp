@@ -20,13 +20,19 @@ struct DemOptions {
     // pixel spacing converted to metres at the DEM centre (the coarser axis),
     // rounded to a multiple of half a power of ten (30.9 m -> 30 m).
     double cell_size = 0.0;
+    // Multiplies the automatic cell size (cell_size = 0) only: `--quality draft|fine`
+    // scales the DEM's own resolution (include/avalanche/app/quality_preset.hpp).
+    double cell_size_factor = 1.0;
     // GDAL resampling: nearest, bilinear, cubic, cubicspline, lanczos, average.
     // Bilinear by default: no new extrema, no staircase slopes (see docs/gis.md).
     // When the grid equals the source grid nothing is resampled whatever this says.
     std::string resampling = "bilinear";
-    // The grid is refused if cells * solver_bytes_per_cell exceeds this (bytes).
+    // The grid is refused (InputError naming the DEM files, before the DEM is read)
+    // if cells * solver_bytes_per_cell exceeds this (bytes). The command line sets it
+    // to the available memory or AVALANCHE_MAX_MEMORY_GB (src/app/prepare_dem.cpp).
     double max_solver_bytes = 8.0 * 1024.0 * 1024.0 * 1024.0;
     double solver_bytes_per_cell = 200.0;  // estimate of the solver state per cell
+    std::string memory_limit_source = "the default limit";  // named in the refusal
 };
 
 // Where an elevation comes from (Dem::filled_mask).
@@ -51,8 +57,8 @@ struct Dem {
 // Reads one or several DEM tiles (any GDAL raster, each with its own CRS) and warps
 // them onto one metric grid. Voids (nodata, NaN, Inf) are filled by inverse-distance
 // interpolation (GDALFillNodata) and counted. Throws InputError for unreadable,
-// corrupt, CRS-less (unless opts.crs) or all-nodata files, ConfigError for bad
-// options and grids above the memory limit.
+// corrupt, CRS-less (unless opts.crs) or all-nodata files and for grids above the
+// memory limit (checked before any cell is read), ConfigError for bad options.
 Dem load_dem(const std::vector<std::string>& paths, const DemOptions& opts = {});
 
 // Writes the computational DEM as a COG GeoTIFF (Float32, nodata -9999 never used

@@ -24,4 +24,17 @@ struct MonitoringPoint {
 std::vector<MonitoringPoint> read_points(const std::string& path, const std::string& csv_crs,
                                          const GeoGrid& geo);
 
+// A point as written in a CSV file, before any reprojection or grid check.
+struct CsvPoint {
+    std::string name;
+    double x = 0.0, y = 0.0;
+    std::string where;  // "line 4", for messages
+};
+
+// The CSV parser of read_points, from text (fuzzing, tests); `label` names the source in
+// errors. Throws InputError(label, "line N: ...") for a missing header column, a row
+// with the wrong number of cells, an empty name or a coordinate that is not a finite
+// number, and for text without a header.
+std::vector<CsvPoint> parse_points_csv(const std::string& text, const std::string& label);
+
 }  // namespace avalanche::gis

@@ -45,8 +45,11 @@ Release rasterize_release_polygons(const std::string& path, const GeoGrid& geo,
 // raster giving no thickness on the grid.
 std::vector<double> read_release_raster(const std::string& path, const GeoGrid& geo);
 
-// Refuses (InputError) a release on DEM cells that were filled voids, with the count.
-void check_release_on_valid_dem(const Release& release, const Dem& dem);
-void check_release_on_valid_dem(const std::vector<double>& thickness, const Dem& dem);
+// Refuses (InputError naming release_path) a release on DEM cells that were filled
+// voids, with the count.
+void check_release_on_valid_dem(const Release& release, const Dem& dem,
+                                const std::string& release_path = "release");
+void check_release_on_valid_dem(const std::vector<double>& thickness, const Dem& dem,
+                                const std::string& release_path = "release");
 
 }  // namespace avalanche::gis
