@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "avalanche/app/quality_preset.hpp"
 #include "avalanche/core/error.hpp"
 #include "avalanche/io/enum_names.hpp"
 #include "avalanche/io/scenario_file.hpp"
@@ -61,6 +62,21 @@ void apply_release_overrides(Scenario& s, const ScenarioOverrides& o) {
     if (o.volume) polygons->volume = *o.volume;
 }
 
+// A quality preset (docs/performance.md): scheme, limiter, Courant number, and the
+// cell size scaled -- the scenario's explicit one here, the automatic DEM resolution
+// when the DEM is read (Scenario::cell_size_factor). The explicit flags, applied after
+// this, win.
+void apply_quality(Scenario& s, Quality q) {
+    const QualityPreset p = quality_preset(q);
+    s.numerics.scheme = p.scheme;
+    s.numerics.limiter = p.limiter;
+    s.numerics.cfl = p.cfl;
+    if (s.cell_size > 0.0)
+        s.cell_size *= p.cell_size_factor;
+    else
+        s.cell_size_factor = p.cell_size_factor;
+}
+
 // The flag that set a scenario key in this run, if any.
 std::optional<std::string> flag_for_key(const std::string& key, const ScenarioOverrides& o) {
     const std::pair<const char*, std::pair<const char*, bool>> table[] = {
@@ -76,6 +92,7 @@ std::optional<std::string> flag_for_key(const std::string& key, const ScenarioOv
         {"material.delta_deg", {"--delta", o.delta.has_value()}},
         {"material.density", {"--density", o.density.has_value()}},
         {"numerics.cell_size", {"--cell-size", o.cell_size.has_value()}},
+        {"numerics.cell_size", {"--quality", o.quality.has_value()}},
         {"numerics.t_end", {"--t-end", o.t_end.has_value()}},
         {"numerics.cfl", {"--cfl", o.cfl.has_value()}},
         {"numerics.output_interval", {"--output-interval", o.output_interval.has_value()}},
@@ -113,7 +130,8 @@ void apply_overrides(Scenario& s, const ScenarioOverrides& o) {
     if (o.earth_pressure)
         s.material.earth_pressure =
             parse_choice(kEarthPressureNames, *o.earth_pressure, "--earth-pressure");
-    if (o.cell_size) s.cell_size = *o.cell_size;
+    if (o.quality) apply_quality(s, parse_quality(*o.quality, "--quality"));
+    if (o.cell_size) s.cell_size = *o.cell_size, s.cell_size_factor = 1.0;
     if (o.t_end) s.numerics.t_end = *o.t_end;
     if (o.cfl) s.numerics.cfl = *o.cfl;
     if (o.scheme) s.numerics.scheme = parse_choice(kSchemeNames, *o.scheme, "--scheme");

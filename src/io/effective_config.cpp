@@ -82,6 +82,9 @@ json effective_config(const Scenario& s) {
         {"earth_pressure", enum_name(kEarthPressureNames, s.material.earth_pressure)},
         {"density", s.material.density}};
     config["numerics"] = numerics_json(s.numerics, s.cell_size);
+    // Recorded only when a quality preset scales the automatic cell size, so that the
+    // configuration hashes of earlier runs stay valid.
+    if (s.cell_size_factor != 1.0) config["numerics"]["cell_size_factor"] = s.cell_size_factor;
     config["points"] =
         s.points ? json{{"file", s.points->path}, {"crs", s.points->crs}} : json(nullptr);
     config["output"] = {{"h_threshold", s.output.h_threshold},

@@ -110,6 +110,9 @@ std::string svg_line_plot(const LinePlot& plot) {
     for (std::size_t s = 0; s < plot.series.size(); ++s) {
         const auto& series = plot.series[s];
         const char* color = kColors[s % (sizeof kColors / sizeof *kColors)];
+        // Past the eight colours, the lines are dashed so that no two series look alike.
+        const std::size_t n_colors = sizeof kColors / sizeof *kColors;
+        const std::string dash = s >= n_colors ? "\" stroke-dasharray=\"6,3" : "";
         std::ostringstream points, markers;
         for (std::size_t k = 0; k < std::min(series.x.size(), series.y.size()); ++k) {
             if (!std::isfinite(series.x[k]) || !std::isfinite(series.y[k])) continue;
@@ -117,13 +120,13 @@ std::string svg_line_plot(const LinePlot& plot) {
             markers << "<circle cx=\"" << px(series.x[k]) << "\" cy=\"" << py(series.y[k])
                     << "\" r=\"3\" fill=\"" << color << "\"/>";
         }
-        o << "<polyline fill=\"none\" stroke=\"" << color << "\" stroke-width=\"2\" points=\""
+        o << "<polyline fill=\"none\" stroke=\"" << color << dash << "\" stroke-width=\"2\" points=\""
           << points.str() << "\"/>\n"
           << markers.str() << "\n";
         if (series.label.empty()) continue;
         const double ly = kTop + 10 + 18 * legend_row++;
         o << "<line x1=\"" << kWidth - kRight + 12 << "\" y1=\"" << ly << "\" x2=\""
-          << kWidth - kRight + 32 << "\" y2=\"" << ly << "\" stroke=\"" << color
+          << kWidth - kRight + 32 << "\" y2=\"" << ly << "\" stroke=\"" << color << dash
           << "\" stroke-width=\"2\"/><text x=\"" << kWidth - kRight + 37 << "\" y=\"" << ly + 4
           << "\">" << escape(series.label) << "</text>\n";
     }

@@ -1,6 +1,7 @@
 #include "support/analytic_studies.hpp"
 
 #include <algorithm>
+#include <ctime>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -15,6 +16,16 @@
 namespace avalanche::analytic {
 
 namespace {
+
+// CPU time of the time loop alone (the exact solutions' quadrature is not the
+// solver's cost), for the speed/accuracy study (tools/pareto_study.cpp). CPU time, not
+// wall time: the studies run on one thread, and on a shared machine the wall time
+// includes whatever else ran.
+double cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kG = 9.81;
 
@@ -82,9 +93,12 @@ DamBreakResult run_dam_break(const DamBreakCase& c, const NumericsParams& n, dou
     const NumericsParams num = with_boundary(n, Boundary::wall, c.exact.gravity);
     Stepper stepper(g, terrain, c.material, num, effective_h_min(num, s, terrain));
     const double v0 = total_volume(s, g);
+    const double t0 = cpu_seconds();
     advance_to(stepper, s, 0.0, c.t_end);
+    const double solver_seconds = cpu_seconds() - t0;
 
     DamBreakResult r;
+    r.solver_seconds = solver_seconds;
     r.dx = dx;
     const double t = c.t_end;
     // Judged on x >= x_w = x_r - c0 t / 2, halfway between the rear and the head of the
@@ -179,11 +193,14 @@ SimilarityResult run_similarity(const SimilarityCase& c, const NumericsParams& n
         });
     const NumericsParams num = with_boundary(n, Boundary::open, c.exact.gravity);
     Stepper stepper(g, terrain, c.material, num, effective_h_min(num, s, terrain));
+    const double t0 = cpu_seconds();
     advance_to(stepper, s, 0.0, c.t_end);
+    const double solver_seconds = cpu_seconds() - t0;
 
     const SimilarityState se = similarity_at(c.exact, c.t_end);
     const Moments m = depth_moments(s, g);
     SimilarityResult r;
+    r.solver_seconds = solver_seconds;
     r.dx = dx;
     r.l1_relative = l1_depth_error(s, g,
                                    [&](double xa, double xb, double ya, double yb) {

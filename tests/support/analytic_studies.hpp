@@ -37,6 +37,7 @@ struct DamBreakResult {
     double front = 0.0, front_exact = 0.0;  // at h = front_level h0
     double rear = 0.0, rear_exact = 0.0;    // at h = rear_level h0
     double mass_error = 0.0;                // relative volume change (walls: must be round-off)
+    double solver_seconds = 0.0;            // CPU time of the time loop (s, one thread)
 };
 DamBreakResult run_dam_break(const DamBreakCase& c, const NumericsParams& n, double dx);
 
@@ -65,6 +66,7 @@ struct SimilarityResult {
     double l_x = 0.0, l_x_exact = 0.0;  // from the variance: L_x^2 = 5 var (1D), 6 var (2D)
     double l_y = 0.0, l_y_exact = 0.0;
     double mean_u = 0.0, mean_u_exact = 0.0;  // momentum / volume vs x_c'
+    double solver_seconds = 0.0;                // CPU time of the time loop (s, one thread)
 };
 SimilarityResult run_similarity(const SimilarityCase& c, const NumericsParams& n, double dx);
 

@@ -45,11 +45,17 @@ struct PreparedScene {
 // Dispatches on the terrain: ChuteGeometry here, DemTerrainSpec to prepare_dem_scene.
 PreparedScene prepare_scene(const Scenario& s);
 
+struct CheckpointContents;  // avalanche/io/checkpoint_file.hpp
+
 struct RunOptions {
     std::string out_dir;       // must exist and be writable (prepare_output_folder)
     std::string command_line;  // recorded in summary.json
     // Called about every 0.1 s of wall time with the fraction done; false interrupts.
     std::function<bool(double)> progress;
+    // DIR/checkpoint.h5 every this many simulated seconds (0: only when interrupted).
+    double checkpoint_interval = 0.0;
+    // Continue from this checkpoint (read_checkpoint) instead of t = 0; null = new run.
+    const CheckpointContents* resume = nullptr;
 };
 
 struct RunOutcome {

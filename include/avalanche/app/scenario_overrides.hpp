@@ -28,6 +28,7 @@ struct ScenarioOverrides {
     std::optional<std::string> scheme;           // --scheme
     std::optional<std::string> limiter;          // --limiter
     std::optional<double> output_interval;       // --output-interval
+    std::optional<std::string> quality;          // --quality draft|standard|fine (before the flags above)
 };
 
 // Applies the flags; throws ConfigError naming the flag for a bad choice or a flag that

@@ -49,6 +49,9 @@ struct Scenario {
     MaterialParams material;
     NumericsParams numerics;
     double cell_size = 0.0;  // m; 0 = automatic (DEM resolution); required for the chute
+    // Scales the automatic (DEM-resolution) cell size: set by `--quality draft|fine`
+    // (app/quality_preset.hpp); an explicit cell size is scaled where it is set instead.
+    double cell_size_factor = 1.0;
     OutputParams output;
     std::string source;  // scenario file the values came from, "" for flags only
 };

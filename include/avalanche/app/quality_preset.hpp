@@ -1,0 +1,28 @@
+#pragma once
+// `--quality draft|standard|fine`: the speed/accuracy presets of docs/performance.md
+// ("The speed/accuracy trade"). Each is a point chosen from the Pareto study
+// (tools/pareto_study.cpp), which states its error and cost on the paper's chute.
+// A preset sets the scheme, the limiter, the Courant number and scales the scene's
+// cell size (the scenario's numerics.cell_size, or the DEM's resolution when that is
+// automatic); flags given explicitly (--scheme, --limiter, --cfl, --cell-size) win.
+#include <string>
+
+#include "avalanche/numerics/parameters.hpp"
+
+namespace avalanche {
+
+enum class Quality { draft, standard, fine };
+
+struct QualityPreset {
+    Scheme scheme = Scheme::waf;
+    Limiter limiter = Limiter::van_leer;
+    double cfl = 0.2;
+    double cell_size_factor = 1.0;  // x the scene's cell size
+};
+
+QualityPreset quality_preset(Quality q);
+// "draft" | "standard" | "fine"; throws ConfigError naming `what` otherwise.
+Quality parse_quality(const std::string& text, const std::string& what);
+std::string to_string(Quality q);
+
+}  // namespace avalanche
