@@ -1,10 +1,18 @@
 #include <spdlog/spdlog.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <system_error>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "avalanche/app/prepared_scene.hpp"
 #include "avalanche/app/products.hpp"
+#include "avalanche/app/report_html.hpp"
 #include "avalanche/io/atomic_file.hpp"
+#include "avalanche/io/checkpoint_file.hpp"
 #include "avalanche/io/effective_config.hpp"
 #include "avalanche/io/results_writer.hpp"
 #include "avalanche/io/summary_writer.hpp"
@@ -46,6 +54,22 @@ nlohmann::json monitoring_json(const MonitoringPoints& probes, const HazardMaps&
     return out;
 }
 
+// Removes what a failed run must not leave looking complete (a previous run's summary
+// and results, with --overwrite).
+void remove_complete_markers(const std::filesystem::path& dir) {
+    std::error_code ec;
+    std::filesystem::remove(dir / "summary.json", ec);
+    std::filesystem::remove(dir / "results.h5", ec);
+}
+
+int openmp_threads() {
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
 }  // namespace
 
 RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const RunOptions& options) {
@@ -53,6 +77,30 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
     const double h_min = effective_h_min(s.numerics, scene.initial, scene.terrain);
     const nlohmann::json config = effective_config(s);
     const std::string hash = config_hash(config);
+    const std::string checkpoint_path = (dir / "checkpoint.h5").string();
+    const std::string diagnostic_path = (dir / "diagnostic_checkpoint.h5").string();
+    const CheckpointContents* resume = options.resume;
+    const CheckpointInfo checkpoint_info{
+        config,
+        hash,
+        std::filesystem::current_path().string(),
+        scene_fingerprint(scene.grid, scene.terrain, scene.initial, scene.outside_data, scene.probes),
+        options.checkpoint_interval,
+        openmp_threads(),
+        software_version()};
+    if (resume && (resume->info.scene_fingerprint != checkpoint_info.scene_fingerprint ||
+                   resume->nx != scene.grid.nx || resume->ny != scene.grid.ny))
+        throw InputError(resume->path,
+                         "the inputs changed since the checkpoint was written (the prepared terrain, "
+                         "release or monitoring points differ); start a new run instead of --resume");
+
+    {
+        // A checkpoint left by an earlier run in this folder belongs to that run: a later
+        // --resume must not continue it over this run's products.
+        std::error_code ec;
+        if (!resume) std::filesystem::remove(checkpoint_path, ec);
+        std::filesystem::remove(diagnostic_path, ec);
+    }
 
     Simulation sim(scene.grid, scene.terrain, s.material, s.numerics, scene.initial, h_min);
     if (!scene.outside_data.empty()) sim.set_sink_cells(scene.outside_data);
@@ -67,11 +115,53 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
     sim.add_observer(&maps);
     if (!scene.probes.empty()) sim.add_observer(&probes);
     if (options.progress) sim.set_progress(options.progress);
+    sim.set_checkpointing(options.checkpoint_interval, [&](const SimulationCheckpoint& c) {
+        write_checkpoint(checkpoint_path, checkpoint_info, c, scene.grid, &results);
+        spdlog::debug("checkpoint at t = {:.6g} s (step {}) in {}", c.loop.t, c.loop.steps, checkpoint_path);
+    });
+    bool diagnostic_written = false;
+    sim.set_fault_handler([&](const FaultReport& f) {
+        try {
+            write_diagnostic_checkpoint(diagnostic_path, checkpoint_info, f, scene.grid);
+            diagnostic_written = true;
+        } catch (const Error& e) {
+            spdlog::warn("could not write the diagnostic checkpoint: {}", e.what());
+        }
+    });
+    // Test hook (tests/cli/test_checkpoint_signals.cpp): a NaN after step N exercises
+    // the numerical-fault path end to end, which no physical scene reaches on purpose.
+    if (const char* step = std::getenv("AVALANCHE_TEST_FAULT_AFTER_STEP"))
+        sim.inject_fault_after_step(std::strtoull(step, nullptr, 10));
+    if (resume) {
+        try {
+            results.resume_from(resume->path);
+            sim.resume(resume->loop, resume->h, resume->hu, resume->hv, resume->observers);
+        } catch (const InputError& e) {
+            // The core names the checkpoint generically; say which file.
+            throw InputError(resume->path, std::string("cannot resume: ") + e.what());
+        }
+        spdlog::info("resuming from {} at t = {:.6g} s (step {}, {} snapshots)", resume->path, resume->loop.t,
+                     resume->loop.steps, results.snapshots());
+    }
 
     for (const auto& note : scene.input_notes) spdlog::info("{}", note);
     spdlog::info("{}; released {:.6g} m3; h_min {:.3g} m; config {}", scene.description,
                  total_volume(scene.initial, scene.grid), h_min, hash);
-    const RunStatistics stats = sim.run();
+    RunStatistics stats;
+    try {
+        stats = sim.run();
+    } catch (const NumericalError& e) {
+        remove_complete_markers(dir);
+        throw Error(ExitCode::numerical,
+                    std::string(e.what()) + (diagnostic_written
+                                                 ? "; the last good and the failing state are in " + diagnostic_path
+                                                 : "; no diagnostic checkpoint could be written"));
+    }
+    const bool complete = stats.end_reason != EndReason::interrupted;
+    if (!complete)
+        spdlog::info("interrupted: the products below are marked incomplete; continue with "
+                     "avalanche-hazard run --resume {}",
+                     dir.string());
     spdlog::info(
         "ended ({}) at t = {:.6g} s after {} steps in {:.3g} s wall; {:.3g} cell updates/s",
         to_string(stats.end_reason), stats.simulated_time, stats.steps, stats.wall_seconds,
@@ -91,7 +181,8 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
     spdlog::info("runout {:.1f} m, travel angle {:.1f} deg, affected area {:.0f} m2; wrote {} product files",
                  runout.runout_length_m, runout.travel_angle_deg, runout.affected_area_m2, files.size() + 1);
 
-    // summary.json last: its presence says the run and every product are complete.
+    // summary.json last: its presence says every product is written; "complete" says
+    // whether the run reached its end (false after a signal: --resume continues it).
     SummaryInputs summary{stats,       config,     hash,        options.command_line,
                           h_min,       scene.grid, scene.frame, results.snapshots(),
                           "results.h5"};
@@ -100,8 +191,10 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
     if (!scene.probes.empty()) js["monitoring_points"] = monitoring_json(probes, maps, scene.grid);
     js["products"] = files;
     js["products"].push_back("report.md");
+    js["products"].push_back("report.html");
     js["crs_wkt"] = scene.crs_wkt;
     js["inputs"] = scene.input_files;
+    write_report_html(options.out_dir, products, js);  // from the same numbers as summary.json
     const std::string summary_path = (dir / "summary.json").string();
     write_file_atomically(summary_path, js.dump(2) + "\n");
     return {stats, results.path(), summary_path};
