@@ -114,7 +114,8 @@ int run_scene(const PreparedScene& scene, const Scenario& scenario, const std::s
         std::cout << "maps: " << dir
                   << "/{max_depth,max_velocity,max_pressure,arrival_time,deposit_thickness,"
                      "hazard_class}.tif (open in QGIS; styles beside them)\nreport: "
-                  << dir << "/report.md\nresults: " << outcome.results_path
+                  << dir << "/report.html (the planner's report, opens offline; also report.md)"
+                  << "\nresults: " << outcome.results_path
                   << "\nsummary: " << outcome.summary_path << "\n";
     }
     if (outcome.stats.end_reason == EndReason::interrupted)
