@@ -24,6 +24,10 @@ void write_report(const std::string& dir, const ProductInputs& in, const std::ve
     const OutputParams& out = in.scenario.output;
     std::ostringstream m;
     m << "# Avalanche hazard simulation report\n\n";
+    if (st.end_reason == EndReason::interrupted)
+        m << "> **INCOMPLETE**: the run was interrupted at t = " << fixed(st.simulated_time, 2)
+          << " s; the maps cover only the flow up to then. Continue it with "
+             "`avalanche-hazard run --resume` on this folder.\n\n";
     m << "Software: avalanche-hazard " << software_version() << ". Configuration hash `" << in.config_hash
       << "`.\n\nCommand:\n\n```\n" << in.command_line << "\n```\n\n";
     m << "## What was simulated\n\n" << in.scene.description << ".\n\n";

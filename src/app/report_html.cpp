@@ -64,7 +64,16 @@ std::string header(const ProductInputs& in, const nlohmann::json& summary) {
       << keyed(summary, "software_version") << ", configuration "
       << keyed(summary, "config_hash", "code") << ".</p>\n<ul class=\"note\">";
     for (const auto& note : in.scene.input_notes) s << "<li>" << html_escape(note) << "</li>";
-    s << "</ul></header>\n";
+    s << "</ul>";
+    // An interrupted run's maps hold only what happened before the signal: say so before
+    // anything else, so that nobody draws a zone from them (summary.json: complete).
+    if (in.stats.end_reason == EndReason::interrupted)
+        s << "<p class=\"incomplete\" style=\"border:3px solid #c00;padding:0.6em;"
+             "font-weight:bold\">INCOMPLETE: the run was interrupted at t = "
+          << html_escape(std::to_string(in.stats.simulated_time))
+          << " s. The maps and numbers below cover only the flow up to then. Continue it with "
+             "<code>avalanche-hazard run --resume</code> on this folder.</p>";
+    s << "</header>\n";
     return s.str();
 }
 

@@ -70,10 +70,17 @@ TEST(CheckpointSignals, SigtermMarksProductsIncompleteAndResumeCompletesThem) {
         EXPECT_EQ(test::gdal_dataset_metadata(ref + "/" + m + ".tif", "AVALANCHE_COMPLETE"), "YES")
             << m;
     }
+    // The reports say so before anything else; the complete reference run's do not.
+    for (const char* report : {"/report.html", "/report.md"}) {
+        EXPECT_NE(test::read_text(out + report).find("INCOMPLETE"), std::string::npos) << report;
+        EXPECT_EQ(test::read_text(ref + report).find("INCOMPLETE"), std::string::npos) << report;
+    }
 
     const auto r = test::run_binary(dir, "run -q --resume '" + out + "'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(test::read_json_file(out + "/summary.json")["complete"], true);
+    for (const char* report : {"/report.html", "/report.md"})
+        EXPECT_EQ(test::read_text(out + report).find("INCOMPLETE"), std::string::npos) << report;
     for (const char* m : kMaps)
         EXPECT_EQ(test::gdal_dataset_metadata(out + "/" + m + ".tif", "AVALANCHE_COMPLETE"), "YES")
             << m;
