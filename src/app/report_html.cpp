@@ -48,8 +48,7 @@ std::vector<MapFigure> map_figures(const ProductInputs& in) {
         {"arrival_time", "Arrival time",
          "When the flow first reached each place, in seconds after the release: the time "
          "left to react.",
-         "", gis::arrival_time_ramp(std::max(in.stats.simulated_time, 1e-9)),
-         "arrival time, s"},
+         "", gis::arrival_time_ramp(std::max(in.stats.simulated_time, 1e-9)), "arrival time, s"},
         {"deposit_thickness", "Deposit",
          "Where the material lies at the end of the run, and how thick (perpendicular to the "
          "slope).",
@@ -90,15 +89,14 @@ std::string brief_section(const nlohmann::json& summary) {
       << " m horizontally from the top of the release area to the farthest point it reached, "
          "and dropped "
       << k("runout.fall_height_m") << " m in height on the way: a travel angle of "
-      << k("runout.travel_angle_deg") << "°. It reached an area of "
-      << k("runout.affected_area_m2") << " m², with speeds up to "
-      << k("runout.max_velocity_ms") << " m/s and impact pressures up to "
-      << k("runout.max_pressure_kpa") << " kPa. At the end, " << k("runout.deposit_volume_m3")
-      << " m³ lay in the deposit.</p>\n<table>\n"
+      << k("runout.travel_angle_deg") << "°. It reached an area of " << k("runout.affected_area_m2")
+      << " m², with speeds up to " << k("runout.max_velocity_ms")
+      << " m/s and impact pressures up to " << k("runout.max_pressure_kpa") << " kPa. At the end, "
+      << k("runout.deposit_volume_m3") << " m³ lay in the deposit.</p>\n<table>\n"
       << row("runout length L (horizontal, top of the release to the farthest reached point)",
              "runout.runout_length_m", "m")
-      << row("fall height H (top of the release minus the farthest point)",
-             "runout.fall_height_m", "m")
+      << row("fall height H (top of the release minus the farthest point)", "runout.fall_height_m",
+             "m")
       << row("travel angle atan(H / L)", "runout.travel_angle_deg", "deg")
       << row("runout efficiency L / H", "runout.runout_efficiency", "")
       << row("affected area (depth at least output.h_threshold at some time)",
@@ -119,8 +117,9 @@ std::string class_swatch(std::size_t k) {
     const gis::Rgba c = gis::hazard_class_palette().stops.at(k).color;
     if (c.a == 0) return "<span class=\"swatch none\"></span>";
     char buf[80];
-    std::snprintf(buf, sizeof buf, "<span class=\"swatch\" style=\"background:#%02x%02x%02x\"></span>",
-                  c.r, c.g, c.b);
+    std::snprintf(buf, sizeof buf,
+                  "<span class=\"swatch\" style=\"background:#%02x%02x%02x\"></span>", c.r, c.g,
+                  c.b);
     return buf;
 }
 
@@ -139,17 +138,14 @@ std::string hazard_section(const nlohmann::json& summary) {
          "<code>output.pressure_low_kpa</code> and <code>output.pressure_high_kpa</code>).</p>\n"
          "<table class=\"classes\"><tr><th>class</th><th>rule</th><th>what it means for land "
          "use</th></tr>\n"
-      << "<tr><td>" << class_swatch(3) << "high (red)</td><td>pressure "
-      << high
+      << "<tr><td>" << class_swatch(3) << "high (red)</td><td>pressure " << high
       << " kPa or more</td><td>Buildings can be destroyed; people are in danger inside "
          "buildings. In zoning practice: no new buildings for people.</td></tr>\n"
-      << "<tr><td>" << class_swatch(2) << "medium (blue)</td><td>from "
-      << low << " to " << high
+      << "<tr><td>" << class_swatch(2) << "medium (blue)</td><td>from " << low << " to " << high
       << " kPa</td><td>People are in danger outside buildings; buildings can be damaged. In "
          "zoning practice: building only with conditions (reinforced walls facing the slope, "
          "protected openings), evacuation plans.</td></tr>\n"
-      << "<tr><td>" << class_swatch(1) << "low (yellow)</td><td>below "
-      << low
+      << "<tr><td>" << class_swatch(1) << "low (yellow)</td><td>below " << low
       << " kPa</td><td>Reached by the flow with little pressure: the danger is low but not "
          "absent. In zoning practice: a hint zone; avoid sensitive uses such as schools or "
          "camping grounds.</td></tr>\n"
@@ -167,7 +163,8 @@ std::string maps_section(const std::string& dir, const ProductInputs& in) {
     const Grid& g = in.scene.grid;
     MapOverlay overlay;
     overlay.grid = g;
-    if (!in.scene.crs_wkt.empty()) overlay.crs_label = gis::GeoGrid{g, in.scene.crs_wkt}.crs_label();
+    if (!in.scene.crs_wkt.empty())
+        overlay.crs_label = gis::GeoGrid{g, in.scene.crs_wkt}.crs_label();
     // The release as rasterized: the cells that held material at the start.
     const std::vector<double> h0 = in.scene.initial.h.interior();
     overlay.release.resize(h0.size());

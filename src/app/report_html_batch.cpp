@@ -30,9 +30,12 @@ Table parse_csv(const std::string& text) {
     for (std::size_t k = 0; k < text.size(); ++k) {
         const char c = text[k];
         if (quoted) {
-            if (c == '"' && k + 1 < text.size() && text[k + 1] == '"') field += '"', ++k;
-            else if (c == '"') quoted = false;
-            else field += c;
+            if (c == '"' && k + 1 < text.size() && text[k + 1] == '"')
+                field += '"', ++k;
+            else if (c == '"')
+                quoted = false;
+            else
+                field += c;
         } else if (c == '"') {
             quoted = any = true;
         } else if (c == ',') {
@@ -65,13 +68,20 @@ bool is_number(const std::string& s, double& value) {
 std::string comparison_section(const fs::path& dir, const Table& csv) {
     std::ostringstream s;
     s << "<section id=\"comparison\"><h2>Comparison of the scenarios</h2>\n";
-    if (csv.size() < 2) return s.str() + "<p class=\"missing\">comparison.csv is empty.</p></section>\n";
+    if (csv.size() < 2)
+        return s.str() + "<p class=\"missing\">comparison.csv is empty.</p></section>\n";
     const auto& header = csv.front();
     const auto runout = std::find(header.begin(), header.end(), "runout_m") - header.begin();
     s << "<p>One row per scenario (values rounded to 4 digits; exact values in "
          "<code>comparison.csv</code>). The id links to the scenario's own report.</p>\n"
-         "<table class=\"comparison\"><tr>";
-    for (const auto& h : header) s << "<th>" << html_escape(h) << "</th>";
+         "<div class=\"wide\"><table class=\"comparison\"><tr>";
+    // Long column names break after their underscores, not inside words.
+    for (const auto& h : header) {
+        std::string name = html_escape(h);
+        for (auto p = name.find('_'); p != std::string::npos; p = name.find('_', p + 6))
+            name.insert(p + 1, "<wbr>");
+        s << "<th>" << name << "</th>";
+    }
     s << "</tr>\n";
     std::string longest, shortest;
     double longest_m = -1e300, shortest_m = 1e300;
@@ -98,10 +108,10 @@ std::string comparison_section(const fs::path& dir, const Table& csv) {
         }
         s << "</tr>\n";
     }
-    s << "</table>\n";
+    s << "</table></div>\n";
     if (!longest.empty())
-        s << "<p>Longest runout: <b>" << html_escape(longest) << "</b> (" << format_number(longest_m)
-          << " m); shortest: <b>" << html_escape(shortest) << "</b> ("
+        s << "<p>Longest runout: <b>" << html_escape(longest) << "</b> ("
+          << format_number(longest_m) << " m); shortest: <b>" << html_escape(shortest) << "</b> ("
           << format_number(shortest_m) << " m).</p>\n";
     s << "</section>\n";
     return s.str();
@@ -111,8 +121,8 @@ std::string plots_section(const fs::path& dir) {
     std::vector<fs::path> svgs;
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(dir, ec))
-        if (e.path().extension() == ".svg" && e.path().filename().string().find("_vs_") !=
-                                                  std::string::npos)
+        if (e.path().extension() == ".svg" &&
+            e.path().filename().string().find("_vs_") != std::string::npos)
             svgs.push_back(e.path());
     std::sort(svgs.begin(), svgs.end());
     if (svgs.empty()) return "";
@@ -150,11 +160,14 @@ std::string frequency_section(const fs::path& dir, const Table& csv,
     gis::write_quicklook_png(png, freq.geo, freq.values, elevation, ramp,
                              freq.nodata.value_or(-9999.0));
     written.push_back("impact_frequency.png");
-    MapFigure f{"impact_frequency", "Impact frequency",
+    MapFigure f{"impact_frequency",
+                "Share of the scenarios that reached each place",
                 "The share of the scenarios whose flow reached each place (depth at least "
                 "output.h_threshold). Places reached in every scenario are the most certain; "
                 "places reached by few scenarios depend on the uncertain parameters.",
-                detail::read_file_bytes(png), ramp, "share of the scenarios"};
+                detail::read_file_bytes(png),
+                ramp,
+                "share of the scenarios"};
     MapOverlay overlay;
     overlay.grid = freq.geo.grid;
     if (!freq.geo.crs_wkt.empty()) overlay.crs_label = freq.geo.crs_label();
@@ -182,8 +195,9 @@ std::string calibration_section(const fs::path& dir) {
     try {
         cal = nlohmann::json::parse(detail::read_file_bytes(path.string()));
     } catch (const std::exception& e) {
-        return s.str() + "<p class=\"missing\">calibration.json could not be read: " +
-               html_escape(e.what()) + "</p></section>\n";
+        return s.str() +
+               "<p class=\"missing\">calibration.json could not be read: " + html_escape(e.what()) +
+               "</p></section>\n";
     }
     auto table = [&](const std::string& name, const nlohmann::json& rows) {
         std::vector<std::string> columns;
@@ -211,7 +225,8 @@ std::string calibration_section(const fs::path& dir) {
     } else if (cal.is_object()) {
         s << "<table>";
         for (const auto& [key, v] : cal.items())
-            if (!is_table(v)) s << "<tr><th>" << html_escape(key) << "</th><td>" << cell_html(v) << "</td></tr>";
+            if (!is_table(v))
+                s << "<tr><th>" << html_escape(key) << "</th><td>" << cell_html(v) << "</td></tr>";
         s << "</table>\n";
         for (const auto& [key, v] : cal.items())
             if (is_table(v)) table(key, v);

@@ -46,8 +46,8 @@ std::string scale_bar_svg(const MapOverlay& o, const MapDisplay& d) {
       << "\" height=\"34\" rx=\"3\" fill=\"white\" fill-opacity=\"0.85\"/>"
       << "<rect x=\"" << px(x) << "\" y=\"" << px(y - 6) << "\" width=\"" << px(bar / 2)
       << "\" height=\"6\" fill=\"black\"/>"
-      << "<rect x=\"" << px(x + bar / 2) << "\" y=\"" << px(y - 6) << "\" width=\""
-      << px(bar / 2) << "\" height=\"6\" fill=\"white\" stroke=\"black\" stroke-width=\"1\"/>"
+      << "<rect x=\"" << px(x + bar / 2) << "\" y=\"" << px(y - 6) << "\" width=\"" << px(bar / 2)
+      << "\" height=\"6\" fill=\"white\" stroke=\"black\" stroke-width=\"1\"/>"
       << "<text x=\"" << px(x) << "\" y=\"" << px(y - 11)
       << "\" text-anchor=\"middle\" font-size=\"11\">0</text>"
       << "<text x=\"" << px(x + bar) << "\" y=\"" << px(y - 11)
@@ -104,8 +104,7 @@ MapDisplay map_display(const Grid& g, double max_width, double max_height) {
     return d;
 }
 
-std::string outline_path(const std::vector<std::uint8_t>& mask, const Grid& g,
-                         double px_per_m) {
+std::string outline_path(const std::vector<std::uint8_t>& mask, const Grid& g, double px_per_m) {
     if (mask.size() != g.cells()) return "";
     auto in = [&](int i, int j) {
         return i >= 0 && i < g.nx && j >= 0 && j < g.ny &&
@@ -129,8 +128,7 @@ std::string outline_path(const std::vector<std::uint8_t>& mask, const Grid& g,
 
 std::string legend_html(const gis::ColorRamp& ramp, const std::string& title) {
     std::ostringstream s;
-    s << "<div class=\"legend\"><div class=\"legend-title\">" << html_escape(title)
-      << "</div><ul>";
+    s << "<div class=\"legend\"><div class=\"legend-title\">" << html_escape(title) << "</div><ul>";
     if (ramp.kind == gis::RampKind::discrete && !ramp.draw_below_first && !ramp.stops.empty()) {
         std::ostringstream first;
         first << ramp.stops.front().value;
@@ -155,8 +153,8 @@ std::string map_figure_html(const MapFigure& f, const MapOverlay& o) {
     // About 640 px wide leaves room for the legend in a 1000 px column.
     const MapDisplay d = map_display(o.grid, 640.0, 620.0);
     std::ostringstream s;
-    s << "<figure class=\"map\" id=\"map-" << html_escape(f.id) << "\"><h3>"
-      << html_escape(f.title) << "</h3><div class=\"map-row\"><div class=\"map-frame\" style=\""
+    s << "<figure class=\"map\" id=\"map-" << html_escape(f.id) << "\"><h3>" << html_escape(f.title)
+      << "</h3><div class=\"map-row\"><div class=\"map-frame\" style=\""
       << "width:" << px(d.width) << "px;height:" << px(d.height) << "px\">";
     if (f.png.empty())
         s << "<p class=\"missing\">The quick-look " << html_escape(f.id)

@@ -86,6 +86,9 @@ figcaption { color: #444; font-size: 0.92em; max-width: 900px; margin-top: 6px; 
 pre { background: #f4f4f4; padding: 8px; white-space: pre-wrap; word-break: break-all; }
 code, .hash { font-family: "DejaVu Sans Mono", monospace; font-size: 0.9em; }
 .missing { color: #a00; }
+.wide { overflow-x: auto; max-width: 100%; }
+table.comparison { font-size: 0.82em; }
+table.comparison th { min-width: 3em; }
 .note { color: #555; font-size: 0.92em; }
 )";
 

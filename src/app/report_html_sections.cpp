@@ -36,7 +36,8 @@ std::string end_reason_words(const std::string& reason) {
 void flatten(const nlohmann::json& summary, const nlohmann::json& node, const std::string& key,
              std::ostringstream& out) {
     if (node.is_object()) {
-        for (const auto& [name, value] : node.items()) flatten(summary, value, key + "." + name, out);
+        for (const auto& [name, value] : node.items())
+            flatten(summary, value, key + "." + name, out);
         return;
     }
     // The row label without "parameters.<group>.".
@@ -118,8 +119,7 @@ std::string run_section(const nlohmann::json& summary) {
              keyed(summary, "volume.relative_error", "td"))
       << row("time steps", keyed(summary, "steps", "td"))
       << row("wall-clock time", keyed(summary, "wall_s", "td"), "s")
-      << row("throughput", keyed(summary, "performance.cell_updates_per_s", "td"),
-             "cell updates/s")
+      << row("throughput", keyed(summary, "performance.cell_updates_per_s", "td"), "cell updates/s")
       << row("threads", keyed(summary, "performance.threads", "td"))
       << row("grid",
              "<td>" + keyed(summary, "grid.nx") + " x " + keyed(summary, "grid.ny") + "</td>",
@@ -135,8 +135,7 @@ std::string parameters_section(const nlohmann::json& summary) {
     s << "<section id=\"parameters\"><h2>Parameters</h2>\n<p>The effective configuration "
          "(built-in defaults, then the scenario file, then the command-line flags), as in "
          "<code>summary.json</code> <code>parameters</code>; its hash "
-      << keyed(summary, "config_hash", "code")
-      << " is written into every map.</p>\n<table>\n";
+      << keyed(summary, "config_hash", "code") << " is written into every map.</p>\n<table>\n";
     if (const nlohmann::json* p = json_at(summary, "parameters"); p && p->is_object())
         for (const auto& [group, values] : p->items()) {
             s << "<tr><th colspan=\"2\">[" << html_escape(group) << "]</th></tr>\n";

@@ -51,8 +51,8 @@ const nlohmann::json* at_key(const nlohmann::json& root, const std::string& key)
     const nlohmann::json* node = &root;
     std::stringstream parts(key);
     for (std::string part; std::getline(parts, part, '.');) {
-        if (node->is_array() && !part.empty() && std::isdigit(static_cast<unsigned char>(part[0])) &&
-            std::stoul(part) < node->size())
+        if (node->is_array() && !part.empty() &&
+            std::isdigit(static_cast<unsigned char>(part[0])) && std::stoul(part) < node->size())
             node = &(*node)[std::stoul(part)];
         else if (node->is_object() && node->contains(part))
             node = &(*node)[part];
@@ -181,15 +181,31 @@ TEST_F(HtmlReport, EveryMarkedNumberEqualsTheSummary) {
     // The numbers a planner needs are among them.
     std::set<std::string> keys;
     for (const auto& m : marked) keys.insert(m.key);
-    for (const char* key :
-         {"runout.runout_length_m", "runout.fall_height_m", "runout.travel_angle_deg",
-          "runout.runout_efficiency", "runout.affected_area_m2", "runout.deposit_volume_m3",
-          "runout.max_depth_m", "runout.max_velocity_ms", "runout.max_pressure_kpa",
-          "volume.released_m3", "volume.final_m3", "volume.outflow_m3", "volume.relative_error",
-          "end_reason", "simulated_time_s", "performance.cell_updates_per_s", "software_version",
-          "config_hash", "command_line", "parameters.material.delta_deg",
-          "parameters.output.pressure_low_kpa", "parameters.output.pressure_high_kpa",
-          "monitoring_points.0.name", "monitoring_points.0.max_pressure_kpa", "inputs.0"})
+    for (const char* key : {"runout.runout_length_m",
+                            "runout.fall_height_m",
+                            "runout.travel_angle_deg",
+                            "runout.runout_efficiency",
+                            "runout.affected_area_m2",
+                            "runout.deposit_volume_m3",
+                            "runout.max_depth_m",
+                            "runout.max_velocity_ms",
+                            "runout.max_pressure_kpa",
+                            "volume.released_m3",
+                            "volume.final_m3",
+                            "volume.outflow_m3",
+                            "volume.relative_error",
+                            "end_reason",
+                            "simulated_time_s",
+                            "performance.cell_updates_per_s",
+                            "software_version",
+                            "config_hash",
+                            "command_line",
+                            "parameters.material.delta_deg",
+                            "parameters.output.pressure_low_kpa",
+                            "parameters.output.pressure_high_kpa",
+                            "monitoring_points.0.name",
+                            "monitoring_points.0.max_pressure_kpa",
+                            "inputs.0"})
         EXPECT_TRUE(keys.count(key)) << key << " is not in the report";
 }
 
@@ -263,7 +279,8 @@ TEST_F(HtmlReport, MapsAreTheQuickLooksWithAConsistentScaleBar) {
         << length;
     EXPECT_GE(length, width_m / 5 / std::sqrt(2.5));
     EXPECT_LE(length, width_m / 5 * std::sqrt(2.5));
-    EXPECT_NEAR(std::stod(bars[0]) / std::stod(frames[0]), length / width_m, 0.01 * length / width_m);
+    EXPECT_NEAR(std::stod(bars[0]) / std::stod(frames[0]), length / width_m,
+                0.01 * length / width_m);
 
     // North arrow: the products are north-up in a projected CRS, and the caption names it.
     EXPECT_NE(html_.find("class=\"north-arrow\""), std::string::npos);
@@ -284,18 +301,21 @@ TEST_F(HtmlReport, MapsAreTheQuickLooksWithAConsistentScaleBar) {
 
 TEST_F(HtmlReport, ExplainsTheHazardClassesWithTheRunsLimits) {
     // The run's own limits (4.5 and 45 kPa), marked, in the class table.
-    for (const char* key : {"parameters.output.pressure_low_kpa", "parameters.output.pressure_high_kpa"})
+    for (const char* key :
+         {"parameters.output.pressure_low_kpa", "parameters.output.pressure_high_kpa"})
         EXPECT_NE(html_.find(std::string("data-key=\"") + key + "\">"), std::string::npos) << key;
     EXPECT_NE(html_.find(">45</span> kPa or more"), std::string::npos);
-    EXPECT_NE(html_.find("below <span class=\"v\" data-key=\"parameters.output.pressure_low_kpa\">4.5</span> kPa"),
+    EXPECT_NE(html_.find("below <span class=\"v\" "
+                         "data-key=\"parameters.output.pressure_low_kpa\">4.5</span> kPa"),
               std::string::npos);
     for (const char* words : {"high (red)", "medium (blue)", "low (yellow)", "not reached"})
         EXPECT_NE(html_.find(words), std::string::npos) << words;
 }
 
 TEST_F(HtmlReport, PlotsTheMonitoringSeries) {
-    for (const char* title : {"Flow depth at the monitoring points", "Speed at the monitoring points",
-                              "Impact pressure at the monitoring points"})
+    for (const char* title :
+         {"Flow depth at the monitoring points", "Speed at the monitoring points",
+          "Impact pressure at the monitoring points"})
         EXPECT_NE(html_.find(title), std::string::npos) << title;
     // One polyline per point and quantity, with as many vertices as the CSV has samples.
     const auto rows = test::lines_of(read_text(out_ + "/monitoring.csv"));
@@ -311,14 +331,17 @@ TEST_F(HtmlReport, PlotsTheMonitoringSeries) {
 // --- (b) rendering in headless Chromium ---------------------------------------------------
 
 std::string chromium() {
-    for (const char* c : {"/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome"})
+    for (const char* c :
+         {"/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome"})
         if (fs::exists(c)) return c;
     return "";
 }
 
-std::string chromium_command(const std::string& exe, const ScratchDir& dir, const std::string& args) {
+std::string chromium_command(const std::string& exe, const ScratchDir& dir,
+                             const std::string& args) {
     // Root needs --no-sandbox; a fresh profile keeps runs independent.
-    return shell_quoted(exe) + " --headless --no-sandbox --disable-gpu --hide-scrollbars --no-first-run " +
+    return shell_quoted(exe) +
+           " --headless --no-sandbox --disable-gpu --hide-scrollbars --no-first-run " +
            "--user-data-dir=" + shell_quoted(dir.file("profile")) + " " + args + " 2>/dev/null";
 }
 
@@ -327,19 +350,20 @@ TEST_F(HtmlReport, ChromiumRendersANonBlankPage) {
     if (exe.empty()) GTEST_SKIP() << "chromium is not installed (setup.sh installs it)";
     ScratchDir dir("html-render");
     const std::string shot = dir.file("shot.png");
-    command_output(chromium_command(exe, dir, "--window-size=1200,3000 --screenshot=" + shell_quoted(shot) +
-                                                  " " + shell_quoted("file://" + out_ + "/report.html")));
+    command_output(chromium_command(exe, dir,
+                                    "--window-size=1200,3000 --screenshot=" + shell_quoted(shot) +
+                                        " " + shell_quoted("file://" + out_ + "/report.html")));
     ASSERT_TRUE(fs::exists(shot)) << "no screenshot";
     GDALAllRegister();
     GDALDataset* png = GDALDataset::Open(shot.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
     ASSERT_NE(png, nullptr) << "not a readable PNG";
     EXPECT_EQ(png->GetRasterXSize(), 1200);
     EXPECT_EQ(png->GetRasterYSize(), 3000);
-    std::vector<double> grey(static_cast<std::size_t>(png->GetRasterXSize()) * png->GetRasterYSize());
-    ASSERT_EQ(png->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, png->GetRasterXSize(),
-                                              png->GetRasterYSize(), grey.data(),
-                                              png->GetRasterXSize(), png->GetRasterYSize(),
-                                              GDT_Float64, 0, 0, nullptr),
+    std::vector<double> grey(static_cast<std::size_t>(png->GetRasterXSize()) *
+                             png->GetRasterYSize());
+    ASSERT_EQ(png->GetRasterBand(1)->RasterIO(
+                  GF_Read, 0, 0, png->GetRasterXSize(), png->GetRasterYSize(), grey.data(),
+                  png->GetRasterXSize(), png->GetRasterYSize(), GDT_Float64, 0, 0, nullptr),
               CE_None);
     GDALClose(png);
     double mean = 0, var = 0;
@@ -415,8 +439,9 @@ TEST(HtmlBatchReport, TableEqualsComparisonCsvAndTheFileIsSelfContained) {
     ScratchDir dir("html-batch");
     const std::string base = dir.write("base.toml", test::kSmallChute);
     const std::string out = dir.file("out");
-    const auto r = run_binary(dir, "batch --quiet --scenario " + shell_quoted(base) +
-                                       " --sweep delta=15,20 --parallel 1 --out " + shell_quoted(out));
+    const auto r =
+        run_binary(dir, "batch --quiet --scenario " + shell_quoted(base) +
+                            " --sweep delta=15,20 --parallel 1 --out " + shell_quoted(out));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string html = read_text(out + "/report.html");
     ASSERT_FALSE(html.empty());
@@ -430,8 +455,8 @@ TEST(HtmlBatchReport, TableEqualsComparisonCsvAndTheFileIsSelfContained) {
     std::size_t cells = 0;
     for (std::size_t row = 1; row < csv.size(); ++row)
         for (std::size_t c = 0; c < csv[0].size(); ++c, ++cells) {
-            const std::string attrs = "data-id=\"" + csv[row][0] + "\" data-column=\"" +
-                                      csv[0][c] + "\" data-value=\"" + csv[row][c] + "\">";
+            const std::string attrs = "data-id=\"" + csv[row][0] + "\" data-column=\"" + csv[0][c] +
+                                      "\" data-value=\"" + csv[row][c] + "\">";
             const auto at = html.find(attrs);
             ASSERT_NE(at, std::string::npos) << attrs;
             if (c == 0) {
@@ -452,8 +477,7 @@ TEST(HtmlBatchReport, TableEqualsComparisonCsvAndTheFileIsSelfContained) {
 
     // The trend plots inline, the impact frequency drawn from its GeoTIFF.
     std::size_t svgs = 0;
-    for (const auto& e : fs::directory_iterator(out))
-        svgs += e.path().extension() == ".svg";
+    for (const auto& e : fs::directory_iterator(out)) svgs += e.path().extension() == ".svg";
     EXPECT_GE(svgs, 2u);
     EXPECT_GE(all_matches(html, "(<svg viewBox=\"0 0 640 420\")").size(), svgs);
     ASSERT_TRUE(fs::exists(out + "/impact_frequency.png"));

@@ -27,8 +27,8 @@ TEST(HtmlText, EscapeCoversMarkupAndQuotes) {
 }
 
 TEST(HtmlText, FormattedNumbersAreWithinHalfAUnitInTheFourthDigit) {
-    for (double v : {0.0, 1.0, -2.5, 1234.5678, 0.0123456, 9999.96, 12345.678, 3.2e7,
-                     1.234567e-16, -7.77777e-5, 2.5e16}) {
+    for (double v : {0.0, 1.0, -2.5, 1234.5678, 0.0123456, 9999.96, 12345.678, 3.2e7, 1.234567e-16,
+                     -7.77777e-5, 2.5e16}) {
         const std::string text = format_number(v);
         const double back = std::stod(text);
         EXPECT_LE(std::abs(back - v), 5e-4 * std::abs(v)) << v << " -> " << text;

@@ -27,8 +27,7 @@ MapDisplay map_display(const Grid& grid, double max_width, double max_height);
 // The boundary between cells with mask != 0 and the others (or the grid edge) as SVG path
 // data in display pixels, row 0 at the top (north): one "Mx yhL" / "Mx yvL" segment per cell
 // edge. `mask` is in solver orientation (index j * nx + i, j = 0 south). "" for no cell.
-std::string outline_path(const std::vector<std::uint8_t>& mask, const Grid& grid,
-                         double px_per_m);
+std::string outline_path(const std::vector<std::uint8_t>& mask, const Grid& grid, double px_per_m);
 
 struct MapOverlay {
     Grid grid;
@@ -39,11 +38,11 @@ struct MapOverlay {
 };
 
 struct MapFigure {
-    std::string id;       // HTML id and the base name of the PNG, e.g. "max_depth"
-    std::string title;    // e.g. "Maximum flow depth"
-    std::string caption;  // plain words: what the colours mean
-    std::string png;      // the PNG file's bytes; "" when it could not be read
-    gis::ColorRamp ramp;  // the ramp the PNG was drawn with
+    std::string id;            // HTML id and the base name of the PNG, e.g. "max_depth"
+    std::string title;         // e.g. "Maximum flow depth"
+    std::string caption;       // plain words: what the colours mean
+    std::string png;           // the PNG file's bytes; "" when it could not be read
+    gis::ColorRamp ramp;       // the ramp the PNG was drawn with
     std::string legend_title;  // e.g. "depth (m, bed-normal)"
 };
 
