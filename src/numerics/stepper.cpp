@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "avalanche/numerics/limiters.hpp"
-#include "avalanche/numerics/riemann_hllc.hpp"
+#include "avalanche/numerics/cell_rows.hpp"
+#include "avalanche/numerics/face_flux_rows.hpp"
 
 namespace avalanche {
 
@@ -179,18 +179,8 @@ double Stepper::stable_dt(const State& s) const {
     const ActiveBox b = box_;
 #pragma omp parallel for reduction(max : rate) schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
-        const double* h = s.h.row(j);
-        const double* hu = s.hu.row(j);
-        const double* hv = s.hv.row(j);
-        const double* px = terrain_.px.row(j);
-        const double* py = terrain_.py.row(j);
-        for (int i = b.i0; i < b.i1; ++i) {
-            if (h[i] < h_min_ || h[i] <= 0.0) continue;
-            const double u = hu[i] / h[i], v = hv[i] / h[i];
-            const double rx = (std::abs(u) + std::sqrt(kx * px[i] * h[i])) / grid_.dx;
-            const double ry = (std::abs(v) + std::sqrt(ky * py[i] * h[i])) / grid_.dy;
-            rate = std::max(rate, std::max(rx, ry));
-        }
+        rate = std::max(rate, cfl_rate_row(s.h.row(j), s.hu.row(j), s.hv.row(j), terrain_.px.row(j),
+                                           terrain_.py.row(j), kx, ky, grid_.dx, grid_.dy, h_min_, b.i0, b.i1));
     }
     return rate > 0.0 ? numerics_.cfl / rate : std::numeric_limits<double>::infinity();
 }
@@ -324,10 +314,6 @@ DirectionalSink along(State& s, bool along_x) {
     return {s.h.raw().data(), (along_x ? s.hu : s.hv).raw().data(), (along_x ? s.hv : s.hu).raw().data()};
 }
 
-inline Conserved load(const DirectionalView& v, std::ptrdiff_t k) { return {v.h[k], v.qn[k], v.qt[k]}; }
-
-inline double velocity(const Conserved& q, double h_dry) { return q.h >= h_dry && q.h > 0.0 ? q.qt / q.h : 0.0; }
-
 }  // namespace
 
 // First-order Godunov half step in one direction, the transverse predictor of
@@ -357,33 +343,19 @@ void Stepper::godunov_predictor(const State& s, double tau, bool along_x) {
     const double hd = h_min_;
     // Faces: the face "before" cell k lies between k - off and k.
     const int fib = along_x ? ib + 1 : ib, fjb = along_x ? jb : jb + 1;
+    const FaceRowInput in{q.h, q.qn, q.qt, cc, off};
+    const FaceRowOutput out{f.h, f.qn, f.qt};
 #pragma omp parallel for schedule(static) if (threaded_)
-    for (int j = ja; j < fjb; ++j) {
-        for (int i = ia; i < fib; ++i) {
-            const std::ptrdiff_t k = s.h.index(i, j);
-            const Conserved g = hllc_flux(load(q, k - off), load(q, k), cc[k - off], cc[k], hd);
-            f.h[k] = g.h;
-            f.qn[k] = g.qn;
-            f.qt[k] = g.qt;
-        }
-    }
+    for (int j = ja; j < fjb; ++j) hllc_face_row(in, out, s.h.index(ia, j), fib - ia, hd);
+    const FaceRowOutput predicted{p.h, p.qn, p.qt};
 #pragma omp parallel for schedule(static) if (threaded_)
-    for (int j = ja; j < jb; ++j) {
-        for (int i = ia; i < ib; ++i) {
-            const std::ptrdiff_t k = s.h.index(i, j);
-            double h = q.h[k] - ratio * (f.h[k + off] - f.h[k]);
-            double qn = q.qn[k] - ratio * (f.qn[k + off] - f.qn[k]);
-            double qt = q.qt[k] - ratio * (f.qt[k + off] - f.qt[k]);
-            if (h <= 0.0) h = qn = qt = 0.0;  // predicted states only feed fluxes
-            p.h[k] = h;
-            p.qn[k] = qn;
-            p.qt[k] = qt;
-        }
-    }
+    for (int j = ja; j < jb; ++j) predictor_row(in, out, ratio, predicted, s.h.index(ia, j), ib - ia);
 }
 
 // Face fluxes in one direction over the active box: WAF-TVD on the predicted
-// states (Wang & Li 2017 eq. 9) or first-order HLLC on the current state.
+// states (Wang & Li 2017 eq. 9; the face flux is waf_face_flux in waf_face.hpp) or
+// first-order HLLC on the current state, one row of faces at a time by the
+// vectorised row kernels (face_flux_rows.hpp, bitwise the scalar kernels).
 void Stepper::face_fluxes(const State& s, const State& predicted, double tau, bool along_x, bool waf) {
     const ActiveBox b = box_;
     State& flux = along_x ? flux_x_ : flux_y_;
@@ -392,75 +364,19 @@ void Stepper::face_fluxes(const State& s, const State& predicted, double tau, bo
     const double dt_dx = tau / (along_x ? grid_.dx : grid_.dy);
     const DirectionalView q = along(waf ? predicted : s, along_x);
     const DirectionalSink f = along(flux, along_x);
-    const double* cc = c.raw().data();
+    const FaceRowInput in{q.h, q.qn, q.qt, c.raw().data(), off};
+    const FaceRowOutput out{f.h, f.qn, f.qt};
     const double hd = h_min_;
-    // A local jump counts as flat when it is below 1e-12 of the values it is the
-    // difference of: relative, so that the decision does not depend on units or
-    // on the frame (DEM and chute frames scale h and u by cos(theta)), and above
-    // round-off, so that a jump of a few ulps does not swing psi from 0 to 2.
-    constexpr double kFlat = 1e-12;
     const int fib = along_x ? b.i1 + 1 : b.i1, fjb = along_x ? b.j1 : b.j1 + 1;
+    const int n = fib - b.i0;
     const Limiter lim = numerics_.limiter;
 #pragma omp parallel for schedule(static) if (threaded_)
     for (int j = b.j0; j < fjb; ++j) {
-        for (int i = b.i0; i < fib; ++i) {
-            const std::ptrdiff_t k = s.h.index(i, j);
-            const Conserved ql = load(q, k - off), qr = load(q, k);
-            Conserved g;
-            const Conserved qll = waf ? load(q, k - 2 * off) : Conserved{};
-            const Conserved qrr = waf ? load(q, k + off) : Conserved{};
-            // At a wet/dry front (a stencil cell thinner than h_min) the WAF weights
-            // lose their meaning: use the first-order upwind flux there, as
-            // thin-layer schemes do (Wang & Li 2017 section 2.2.3).
-            const bool front = waf && (qll.h < hd || ql.h < hd || qr.h < hd || qrr.h < hd);
-            if (!waf || front) {
-                g = hllc_flux(ql, qr, cc[k - off], cc[k], hd);  // only the upwind region's flux
-            } else {
-                const HllcFan fan = hllc_fan(ql, qr, cc[k - off], cc[k], hd);
-                // Limiter ratios. The shear wave is limited on the jump of the
-                // transverse velocity (Toro 2009 section 16.7). Each outer wave is
-                // limited on its own strength: the jumps of (h, q_n) at this face and
-                // at the upwind face are projected on the local eigenvectors of the
-                // flux Jacobian, alpha_1 = ((u + a) dh - dq) / 2a and
-                // alpha_3 = (dq - (u - a) dh) / 2a (LeVeque 2002 section 6.12).
-                // A depth ratio alone let a face with equal depths but a velocity
-                // jump take psi -> 2 (a downwind flux) and runs failed; the minimum of
-                // the depth and momentum ratios was robust but first order on smooth
-                // flow. The wave strengths are both robust and second order.
-                const double h_bar = 0.5 * (ql.h + qr.h);
-                const double u_bar = 0.5 * (fan.ul + fan.ur);  // both wet here: q_n / h
-                const double a_bar = std::sqrt(0.5 * (cc[k - off] + cc[k]) * h_bar);
-                const auto strength = [&](int wave, double dh, double dq) {
-                    return wave == 0 ? ((u_bar + a_bar) * dh - dq) / (2.0 * a_bar)
-                                     : (dq - (u_bar - a_bar) * dh) / (2.0 * a_bar);
-                };
-                // Strengths below 1e-12 of the depth count as flat (relative, so the
-                // choice does not depend on units or frame).
-                const double tiny_alpha = kFlat * h_bar;
-                const double s_wave[3] = {fan.s_l, fan.s_star, fan.s_r};
-                double psi[3];
-                for (int m = 0; m < 3; ++m) {
-                    const bool from_left = s_wave[m] >= 0.0;
-                    if (m == 1) {
-                        // fan.vl, fan.vr are velocity(ql, hd), velocity(qr, hd), already divided.
-                        const double dv_loc = fan.vr - fan.vl;
-                        const double dv_up = from_left ? fan.vl - velocity(qll, hd)
-                                                       : velocity(qrr, hd) - fan.vr;
-                        const double tiny_v = kFlat * std::max(std::abs(fan.vl), std::abs(fan.vr));
-                        psi[m] = limiter_psi(lim, jump_ratio(dv_up, dv_loc, tiny_v));
-                    } else {
-                        const double local = strength(m, qr.h - ql.h, qr.qn - ql.qn);
-                        const double upwind = from_left ? strength(m, ql.h - qll.h, ql.qn - qll.qn)
-                                                        : strength(m, qrr.h - qr.h, qrr.qn - qr.qn);
-                        psi[m] = limiter_psi(lim, jump_ratio(upwind, local, tiny_alpha));
-                    }
-                }
-                g = waf_flux(fan, dt_dx, psi);
-            }
-            f.h[k] = g.h;
-            f.qn[k] = g.qn;
-            f.qt[k] = g.qt;
-        }
+        const std::ptrdiff_t k0 = s.h.index(b.i0, j);
+        if (waf)
+            waf_face_row(in, out, k0, n, hd, dt_dx, lim);
+        else
+            hllc_face_row(in, out, k0, n, hd);
     }
 }
 
@@ -720,53 +636,20 @@ void Stepper::advect(State& s, double tau) {
 void Stepper::apply_sources(State& s, double dt) const {
     const ActiveBox b = box_;
     const int m = numerics_.source_substeps;
-    const double sub = dt / m;
+    const SourceRowParams p{dt / m, m, tan_delta_, numerics_.gravity, energy_budget_};
     const bool curv = terrain_.has_curvature, metric = terrain_.has_metric;
-    const double td = tan_delta_;
 #pragma omp parallel for schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
-        double* h = s.h.row(j);
-        double* hu = s.hu.row(j);
-        double* hv = s.hv.row(j);
-        const double* ax = terrain_.ax.row(j);
-        const double* ay = terrain_.ay.row(j);
-        const double* gn = terrain_.gn.row(j);
-        const double* elev = terrain_.elevation.row(j);
-        for (int i = b.i0; i < b.i1; ++i) {
-            if (h[i] <= 0.0) continue;
-            double u = hu[i] / h[i], v = hv[i] / h[i];
-            double after2 = 0.0;  // true speed^2 after the last sub-step
-            for (int n = 0; n < m; ++n) {
-                u += sub * ax[i];
-                v += sub * ay[i];
-                double load = gn[i];
-                if (curv) {
-                    load += terrain_.cxx(i, j) * u * u + 2.0 * terrain_.cxy(i, j) * u * v +
-                            terrain_.cyy(i, j) * v * v;
-                }
-                load = std::max(load, 0.0);  // material lifting off feels no friction
-                double speed2 = u * u + v * v;
-                if (metric) {
-                    const double w = terrain_.sx(i, j) * u + terrain_.sy(i, j) * v;
-                    speed2 += w * w;
-                }
-                const double speed = std::sqrt(speed2);
-                const double f = td * load * sub;
-                if (speed <= f) {
-                    u = v = 0.0;
-                    after2 = 0.0;
-                } else {
-                    const double scale = 1.0 - f / speed;
-                    u *= scale;
-                    v *= scale;
-                    after2 = (speed - f) * (speed - f);
-                }
-            }
-            // Gravity must not lift the speed over the energy cap either.
-            cap_speed(u, v, after2, speed_cap2(elev[i]));
-            hu[i] = h[i] * u;
-            hv[i] = h[i] * v;
-        }
+        const SourceRowTerrain t{terrain_.ax.row(j),
+                                 terrain_.ay.row(j),
+                                 terrain_.gn.row(j),
+                                 terrain_.elevation.row(j),
+                                 curv ? terrain_.cxx.row(j) : nullptr,
+                                 curv ? terrain_.cxy.row(j) : nullptr,
+                                 curv ? terrain_.cyy.row(j) : nullptr,
+                                 metric ? terrain_.sx.row(j) : nullptr,
+                                 metric ? terrain_.sy.row(j) : nullptr};
+        apply_sources_row(s.h.row(j), s.hu.row(j), s.hv.row(j), t, p, b.i0, b.i1);
     }
 }
 

@@ -1,0 +1,60 @@
+#pragma once
+// Face fluxes of one grid row, written for the vector units (SIMD): the stepper's
+// hot loops (the predictor's first-order fluxes and the WAF fluxes, 70 % of the
+// instructions of a fully wet step) call these once per row.
+//
+// Every value is computed by the same expressions, in the same order, as the scalar
+// kernels of riemann_hllc.hpp and the limiter code of limiters.hpp; the branches of
+// the scalar code (wet/dry sides, fan region, wet/dry front, wave direction) become
+// selections between values computed for every face. IEEE arithmetic is exact per
+// operation and the core layer is built without FMA contraction, so the results are
+// bitwise those of the scalar kernels, whatever vector width the machine has
+// (tests/regression/test_face_flux_rows.cpp).
+//
+// Layout: one row of faces; face n lies between the cells k - off and k, with
+// k = k0 + n, where off is 1 for x-faces and the row stride for y-faces. The
+// loads of both directions are contiguous in n. The "normal" momentum is hu for
+// x-faces and hv for y-faces (the tangential one the other).
+#include <cstddef>
+
+#include "avalanche/numerics/parameters.hpp"
+
+namespace avalanche {
+
+struct FaceRowInput {
+    const double* h;   // depth per cell (whole field, indexed by k)
+    const double* qn;  // momentum normal to the faces
+    const double* qt;  // momentum along the faces
+    const double* c;   // pressure coefficient k g_z per cell
+    std::ptrdiff_t off;
+};
+
+struct FaceRowOutput {
+    double* h;
+    double* qn;
+    double* qt;
+};
+
+// First-order HLLC flux, bitwise hllc_flux(ql, qr, c_l, c_r, h_dry), of the faces
+// k0 .. k0 + n - 1.
+void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n,
+                   double h_dry) noexcept;
+
+// WAF-TVD flux of Stepper::face_fluxes: the limited WAF flux of the HLLC fan, or the
+// first-order flux where one of the four stencil cells is thinner than h_dry.
+// h_dry must be positive.
+void waf_face_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n,
+                  double h_dry, double dt_over_dx, Limiter limiter) noexcept;
+
+}  // namespace avalanche
+
+namespace avalanche {
+
+// The transverse predictor's half step on one row of cells (Stepper::godunov_predictor,
+// Wang & Li 2017 eqs. 6-8): out(k) = q(k) - ratio (F(k + off) - F(k)) for the cells
+// k0 .. k0 + n - 1, where F(k) is the flux of the face before cell k; a cell left
+// with h <= 0 is set empty (predicted states only feed fluxes).
+void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio,
+                   const FaceRowOutput& out, std::ptrdiff_t k0, int n) noexcept;
+
+}  // namespace avalanche

@@ -1,0 +1,277 @@
+#include "avalanche/numerics/face_flux_rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "avalanche/numerics/riemann_hllc.hpp"
+#include "simd_clones.hpp"
+
+namespace avalanche {
+
+namespace {
+
+// A face's first-order flux, the expressions of hllc_flux(ql, qr, c_l, c_r, h_dry)
+// (riemann_hllc.hpp) with its branches turned into selections.
+struct FaceFlux {
+    double h, qn, qt;
+};
+
+AVALANCHE_INLINE FaceFlux hllc_lane(double h_l, double qn_l, double qt_l, double h_r, double qn_r,
+                                    double qt_r, double c_l, double c_r, double h_dry) {
+    // Non-short-circuit logic and divisions evaluated for every lane (a dry lane's
+    // quotient is discarded): conditional arithmetic would keep the loop scalar.
+    const bool wet_l = (h_l >= h_dry) & (h_l > 0.0);
+    const bool wet_r = (h_r >= h_dry) & (h_r > 0.0);
+    const double hl = wet_l ? h_l : 0.0, hr = wet_r ? h_r : 0.0;
+    const double ul_any = qn_l / h_l, vl_any = qt_l / h_l, ur_any = qn_r / h_r, vr_any = qt_r / h_r;
+    const double ul = wet_l ? ul_any : 0.0, vl = wet_l ? vl_any : 0.0;
+    const double ur = wet_r ? ur_any : 0.0, vr = wet_r ? vr_any : 0.0;
+    const double al = std::sqrt(c_l * hl), ar = std::sqrt(c_r * hr);
+    // The three speed cases of the scalar kernel: right side dry, left side dry, both wet.
+    const double s_l_wet = std::min(ul - al, ur - ar);
+    const double s_r_wet = std::max(ul + al, ur + ar);
+    const double s_star_wet = (s_l_wet * hr * (ur - s_r_wet) - s_r_wet * hl * (ul - s_l_wet)) /
+                              (hr * (ur - s_r_wet) - hl * (ul - s_l_wet));
+    const double front_r = ul + 2.0 * al, front_l = ur - 2.0 * ar;
+    const double s_l = !wet_r ? ul - al : (!wet_l ? front_l : s_l_wet);
+    const double s_star = !wet_r ? front_r : (!wet_l ? front_l : s_star_wet);
+    const double s_r = !wet_r ? front_r : (!wet_l ? ur + ar : s_r_wet);
+
+    const Conserved fl = physical_flux(hl, ul, vl, c_l), fr = physical_flux(hr, ur, vr, c_r);
+    const double inv = 1.0 / (s_r - s_l);
+    const double fh = (s_r * fl.h - s_l * fr.h + s_l * s_r * (hr - hl)) * inv;
+    const double fq = (s_r * fl.qn - s_l * fr.qn + s_l * s_r * (hr * ur - hl * ul)) * inv;
+    const double ft = fh * (s_star >= 0.0 ? vl : vr);
+
+    const bool left = s_l >= 0.0;
+    const bool right = !left & (s_star < 0.0) & (s_r < 0.0);
+    const bool dry = !wet_l & !wet_r;
+    FaceFlux f;
+    f.h = dry ? 0.0 : (left ? fl.h : (right ? fr.h : fh));
+    f.qn = dry ? 0.0 : (left ? fl.qn : (right ? fr.qn : fq));
+    f.qt = dry ? 0.0 : (left ? fl.qt : (right ? fr.qt : ft));
+    return f;
+}
+
+template <Limiter L>
+AVALANCHE_INLINE double psi_of(double r) {
+    double p = 0.0;
+    if constexpr (L == Limiter::superbee) {
+        p = std::max(std::min(2.0 * r, 1.0), std::min(r, 2.0));
+    } else if constexpr (L == Limiter::van_leer) {
+        p = 2.0 * r / (1.0 + r);
+    } else if constexpr (L == Limiter::van_albada) {
+        p = r * (1.0 + r) / (1.0 + r * r);
+    } else {
+        p = std::min(r, 1.0);
+    }
+    return r <= 0.0 ? 0.0 : p;  // limiter_psi (limiters.hpp)
+}
+
+// jump_ratio (limiters.hpp) as selections.
+AVALANCHE_INLINE double ratio_of(double d_upwind, double d_local, double tiny) {
+    const double flat = std::abs(d_upwind) <= tiny ? 1.0 : 0.0;
+    const double r = d_upwind / d_local;
+    return std::abs(d_local) <= tiny ? flat : r;
+}
+
+// The WAF weight 1/2 sign(c) A of one wave (waf_flux, riemann_hllc.hpp).
+AVALANCHE_INLINE double waf_weight(double s, double dt_over_dx, double psi) {
+    const double c = std::clamp(s * dt_over_dx, -1.0, 1.0);
+    const double a = 1.0 - (1.0 - std::abs(c)) * psi;
+    return c > 0.0 ? 0.5 * a : (c < 0.0 ? -0.5 * a : 0.0);
+}
+
+AVALANCHE_INLINE double waf_component(double f0, double f1, double f2, double f3,
+                                      const double w[3]) {
+    const double outer = w[0] * (f1 - f0) + w[2] * (f3 - f2);
+    return 0.5 * (f0 + f3) - outer - w[1] * (f2 - f1);
+}
+
+// Stepper::face_fluxes for one face with all four stencil cells at least h_dry
+// thick (so both sides wet, h_dry > 0): hllc_fan's wet/wet fan, the wave-strength
+// and shear limiter ratios, waf_flux.
+template <Limiter L>
+AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double qt_ll, double h_l, double qn_l,
+                                   double qt_l, double h_r, double qn_r, double qt_r, double h_rr,
+                                   double qn_rr, double qt_rr, double c_l, double c_r, double h_dry,
+                                   double dt_over_dx) {
+    constexpr double kFlat = 1e-12;  // Stepper::face_fluxes
+    const double ul = qn_l / h_l, vl = qt_l / h_l;
+    const double ur = qn_r / h_r, vr = qt_r / h_r;
+    const double al = std::sqrt(c_l * h_l), ar = std::sqrt(c_r * h_r);
+    const double s_l = std::min(ul - al, ur - ar);
+    const double s_r = std::max(ul + al, ur + ar);
+    const double s_star =
+        (s_l * h_r * (ur - s_r) - s_r * h_l * (ul - s_l)) / (h_r * (ur - s_r) - h_l * (ul - s_l));
+    const Conserved f0 = physical_flux(h_l, ul, vl, c_l), f3 = physical_flux(h_r, ur, vr, c_r);
+    const double inv = 1.0 / (s_r - s_l);
+    const double fh = (s_r * f0.h - s_l * f3.h + s_l * s_r * (h_r - h_l)) * inv;
+    const double fq = (s_r * f0.qn - s_l * f3.qn + s_l * s_r * (h_r * ur - h_l * ul)) * inv;
+    const double f1t = fh * vl, f2t = fh * vr;
+
+    const double h_bar = 0.5 * (h_l + h_r);
+    const double u_bar = 0.5 * (ul + ur);
+    const double a_bar = std::sqrt(0.5 * (c_l + c_r) * h_bar);
+    const double tiny_alpha = kFlat * h_bar;
+    const double up_l = u_bar + a_bar, up_r = u_bar - a_bar, two_a = 2.0 * a_bar;
+    // Outer waves: strengths alpha_1 = ((u + a) dh - dq) / 2a, alpha_3 = (dq - (u - a) dh) / 2a.
+    const double dh_loc = h_r - h_l, dq_loc = qn_r - qn_l;
+    const double dh_lup = h_l - h_ll, dq_lup = qn_l - qn_ll;  // the face upwind on the left
+    const double dh_rup = h_rr - h_r, dq_rup = qn_rr - qn_r;  // the face upwind on the right
+    const bool from_left_1 = s_l >= 0.0;
+    const double loc_1 = (up_l * dh_loc - dq_loc) / two_a;
+    const double up_1_l = (up_l * dh_lup - dq_lup) / two_a,
+                 up_1_r = (up_l * dh_rup - dq_rup) / two_a;
+    const double up_1 = from_left_1 ? up_1_l : up_1_r;
+    const bool from_left_3 = s_r >= 0.0;
+    const double loc_3 = (dq_loc - up_r * dh_loc) / two_a;
+    const double up_3_l = (dq_lup - up_r * dh_lup) / two_a,
+                 up_3_r = (dq_rup - up_r * dh_rup) / two_a;
+    const double up_3 = from_left_3 ? up_3_l : up_3_r;
+    // Shear wave: the jump of the transverse velocity.
+    const bool from_left_2 = s_star >= 0.0;
+    const double v_ll_any = qt_ll / h_ll, v_rr_any = qt_rr / h_rr;
+    const double v_ll = (h_ll >= h_dry) & (h_ll > 0.0) ? v_ll_any : 0.0;
+    const double v_rr = (h_rr >= h_dry) & (h_rr > 0.0) ? v_rr_any : 0.0;
+    const double dv_loc = vr - vl;
+    const double dv_up = from_left_2 ? vl - v_ll : v_rr - vr;
+    const double tiny_v = kFlat * std::max(std::abs(vl), std::abs(vr));
+
+    const double psi1 = psi_of<L>(ratio_of(up_1, loc_1, tiny_alpha));
+    const double psi2 = psi_of<L>(ratio_of(dv_up, dv_loc, tiny_v));
+    const double psi3 = psi_of<L>(ratio_of(up_3, loc_3, tiny_alpha));
+    const double w[3] = {waf_weight(s_l, dt_over_dx, psi1), waf_weight(s_star, dt_over_dx, psi2),
+                         waf_weight(s_r, dt_over_dx, psi3)};
+    return {waf_component(f0.h, fh, fh, f3.h, w), waf_component(f0.qn, fq, fq, f3.qn, w),
+            waf_component(f0.qt, f1t, f2t, f3.qt, w)};
+}
+
+AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0,
+                               int n, double h_dry) {
+    const std::ptrdiff_t off = in.off;
+    const double* __restrict h = in.h + k0;
+    const double* __restrict qn = in.qn + k0;
+    const double* __restrict qt = in.qt + k0;
+    const double* __restrict c = in.c + k0;
+    double* __restrict oh = out.h + k0;
+    double* __restrict oqn = out.qn + k0;
+    double* __restrict oqt = out.qt + k0;
+#pragma omp simd
+    for (int i = 0; i < n; ++i) {
+        const FaceFlux f = hllc_lane(h[i - off], qn[i - off], qt[i - off], h[i], qn[i], qt[i],
+                                     c[i - off], c[i], h_dry);
+        oh[i] = f.h;
+        oqn[i] = f.qn;
+        oqt[i] = f.qt;
+    }
+}
+
+template <Limiter L>
+AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0,
+                              int n, double h_dry, double dt_over_dx) {
+    const std::ptrdiff_t off = in.off;
+    const double* __restrict h = in.h + k0;
+    const double* __restrict qn = in.qn + k0;
+    const double* __restrict qt = in.qt + k0;
+    const double* __restrict c = in.c + k0;
+    double* __restrict oh = out.h + k0;
+    double* __restrict oqn = out.qn + k0;
+    double* __restrict oqt = out.qt + k0;
+#pragma omp simd
+    for (int i = 0; i < n; ++i) {
+        const double hll = h[i - 2 * off], hl = h[i - off], hr = h[i], hrr = h[i + off];
+        // At a wet/dry front (a stencil cell thinner than h_dry) the first-order flux.
+        const bool front = (hll < h_dry) | (hl < h_dry) | (hr < h_dry) | (hrr < h_dry);
+        const FaceFlux g =
+            hllc_lane(hl, qn[i - off], qt[i - off], hr, qn[i], qt[i], c[i - off], c[i], h_dry);
+        const FaceFlux w = waf_lane<L>(hll, qn[i - 2 * off], qt[i - 2 * off], hl, qn[i - off],
+                                       qt[i - off], hr, qn[i], qt[i], hrr, qn[i + off], qt[i + off],
+                                       c[i - off], c[i], h_dry, dt_over_dx);
+        oh[i] = front ? g.h : w.h;
+        oqn[i] = front ? g.qn : w.qn;
+        oqt[i] = front ? g.qt : w.qt;
+    }
+}
+
+AVALANCHE_SIMD_CLONES void waf_row_superbee(const FaceRowInput& in, const FaceRowOutput& out,
+                                            std::ptrdiff_t k0, int n, double h_dry,
+                                            double dt_over_dx) {
+    waf_row<Limiter::superbee>(in, out, k0, n, h_dry, dt_over_dx);
+}
+AVALANCHE_SIMD_CLONES void waf_row_van_leer(const FaceRowInput& in, const FaceRowOutput& out,
+                                            std::ptrdiff_t k0, int n, double h_dry,
+                                            double dt_over_dx) {
+    waf_row<Limiter::van_leer>(in, out, k0, n, h_dry, dt_over_dx);
+}
+AVALANCHE_SIMD_CLONES void waf_row_van_albada(const FaceRowInput& in, const FaceRowOutput& out,
+                                              std::ptrdiff_t k0, int n, double h_dry,
+                                              double dt_over_dx) {
+    waf_row<Limiter::van_albada>(in, out, k0, n, h_dry, dt_over_dx);
+}
+AVALANCHE_SIMD_CLONES void waf_row_minmod(const FaceRowInput& in, const FaceRowOutput& out,
+                                          std::ptrdiff_t k0, int n, double h_dry,
+                                          double dt_over_dx) {
+    waf_row<Limiter::minmod>(in, out, k0, n, h_dry, dt_over_dx);
+}
+AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOutput& out,
+                                        std::ptrdiff_t k0, int n, double h_dry) {
+    hllc_row(in, out, k0, n, h_dry);
+}
+
+AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRowOutput& flux,
+                                             double ratio, const FaceRowOutput& out,
+                                             std::ptrdiff_t k0, int n) {
+    const std::ptrdiff_t off = q.off;
+    const double* __restrict h = q.h + k0;
+    const double* __restrict qn = q.qn + k0;
+    const double* __restrict qt = q.qt + k0;
+    const double* __restrict fh = flux.h + k0;
+    const double* __restrict fqn = flux.qn + k0;
+    const double* __restrict fqt = flux.qt + k0;
+    double* __restrict ph = out.h + k0;
+    double* __restrict pqn = out.qn + k0;
+    double* __restrict pqt = out.qt + k0;
+#pragma omp simd
+    for (int i = 0; i < n; ++i) {
+        const double hh = h[i] - ratio * (fh[i + off] - fh[i]);
+        const double hn = qn[i] - ratio * (fqn[i + off] - fqn[i]);
+        const double ht = qt[i] - ratio * (fqt[i + off] - fqt[i]);
+        const bool empty = hh <= 0.0;
+        ph[i] = empty ? 0.0 : hh;
+        pqn[i] = empty ? 0.0 : hn;
+        pqt[i] = empty ? 0.0 : ht;
+    }
+}
+
+}  // namespace
+
+void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio,
+                   const FaceRowOutput& out, std::ptrdiff_t k0, int n) noexcept {
+    predictor_row_any(q, flux, ratio, out, k0, n);
+}
+
+void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n,
+                   double h_dry) noexcept {
+    hllc_row_any(in, out, k0, n, h_dry);
+}
+
+void waf_face_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n,
+                  double h_dry, double dt_over_dx, Limiter limiter) noexcept {
+    switch (limiter) {
+        case Limiter::superbee:
+            waf_row_superbee(in, out, k0, n, h_dry, dt_over_dx);
+            return;
+        case Limiter::van_leer:
+            waf_row_van_leer(in, out, k0, n, h_dry, dt_over_dx);
+            return;
+        case Limiter::van_albada:
+            waf_row_van_albada(in, out, k0, n, h_dry, dt_over_dx);
+            return;
+        case Limiter::minmod:
+            waf_row_minmod(in, out, k0, n, h_dry, dt_over_dx);
+            return;
+    }
+}
+
+}  // namespace avalanche

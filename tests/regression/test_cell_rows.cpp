@@ -1,0 +1,166 @@
+// The vectorised per-cell row kernels (cell_rows.hpp) must give bitwise what the
+// stepper's scalar loops gave before they were vectorised. The references below are
+// those loops as they stood (stepper.cpp, apply_sources and stable_dt, 2026-11-22),
+// kept here as the definition. Rows mix dry, thin, moving, stopping and capped cells,
+// with and without curvature and metric terms, one and several sub-steps.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "avalanche/numerics/cell_rows.hpp"
+
+using namespace avalanche;
+
+namespace {
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void cap_speed_reference(double& u, double& v, double speed2, double cap2) {
+    if (speed2 <= cap2) return;
+    if (cap2 <= 0.0) {
+        u = v = 0.0;
+        return;
+    }
+    const double scale = std::sqrt(cap2 / speed2);
+    u *= scale;
+    v *= scale;
+}
+
+struct Row {
+    std::vector<double> h, hu, hv, ax, ay, gn, elev, cxx, cxy, cyy, sx, sy, px, py;
+};
+
+Row random_row(std::mt19937_64& rng, int n) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
+    Row r;
+    for (auto* f : {&r.h, &r.hu, &r.hv, &r.ax, &r.ay, &r.gn, &r.elev, &r.cxx, &r.cxy, &r.cyy, &r.sx,
+                    &r.sy, &r.px, &r.py})
+        f->resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        const double kind = unit(rng);
+        r.h[i] = kind < 0.2 ? 0.0 : kind < 0.3 ? 1e-6 : 5.0 * unit(rng);
+        const double speed =
+            kind > 0.9 ? 0.01 * unit(rng) : 30.0 * unit(rng);  // some stop by friction
+        r.hu[i] = r.h[i] * speed * sym(rng);
+        r.hv[i] = r.h[i] * speed * sym(rng);
+        r.ax[i] = 5.0 * sym(rng);
+        r.ay[i] = 5.0 * sym(rng);
+        r.gn[i] = 9.81 * unit(rng);
+        r.elev[i] =
+            100.0 * unit(rng);  // with the budget below, some cells capped, some above reach
+        r.cxx[i] = 0.05 * sym(rng);
+        r.cxy[i] = 0.05 * sym(rng);
+        r.cyy[i] = 0.05 * sym(rng);
+        r.sx[i] = sym(rng);
+        r.sy[i] = sym(rng);
+        r.px[i] = 9.81 * unit(rng);
+        r.py[i] = 9.81 * unit(rng);
+    }
+    return r;
+}
+
+}  // namespace
+
+TEST(CellRows, SourcesRowIsBitwiseTheScalarSourceLoop) {
+    std::mt19937_64 rng(20261203);
+    const int n = 53;  // not a multiple of any vector width
+    long cells = 0, capped = 0, stopped = 0;
+    for (int trial = 0; trial < 64; ++trial) {
+        const bool curv = trial % 2 == 1, metric = (trial / 2) % 2 == 1;
+        const int m = trial % 8 < 4 ? 1 : 3;
+        const double dt = 0.05, td = 0.4, g = 9.81;
+        const double budget = trial % 16 < 8 ? g * 60.0 : std::numeric_limits<double>::infinity();
+        Row r = random_row(rng, n);
+        Row ref = r;
+        // The reference: apply_sources' loop body.
+        const double sub = dt / m;
+        for (int i = 0; i < n; ++i) {
+            if (ref.h[i] <= 0.0) continue;
+            double u = ref.hu[i] / ref.h[i], v = ref.hv[i] / ref.h[i];
+            double after2 = 0.0;
+            for (int k = 0; k < m; ++k) {
+                u += sub * ref.ax[i];
+                v += sub * ref.ay[i];
+                double load = ref.gn[i];
+                if (curv)
+                    load += ref.cxx[i] * u * u + 2.0 * ref.cxy[i] * u * v + ref.cyy[i] * v * v;
+                load = std::max(load, 0.0);
+                double speed2 = u * u + v * v;
+                if (metric) {
+                    const double w = ref.sx[i] * u + ref.sy[i] * v;
+                    speed2 += w * w;
+                }
+                const double speed = std::sqrt(speed2);
+                const double f = td * load * sub;
+                if (speed <= f) {
+                    u = v = 0.0;
+                    after2 = 0.0;
+                } else {
+                    const double scale = 1.0 - f / speed;
+                    u *= scale;
+                    v *= scale;
+                    after2 = (speed - f) * (speed - f);
+                }
+            }
+            const double cap2 = 2.0 * (budget - g * ref.elev[i]);
+            if (after2 > cap2) ++capped;
+            if (u == 0.0 && v == 0.0) ++stopped;
+            cap_speed_reference(u, v, after2, cap2);
+            ref.hu[i] = ref.h[i] * u;
+            ref.hv[i] = ref.h[i] * v;
+        }
+        const SourceRowTerrain t{r.ax.data(),
+                                 r.ay.data(),
+                                 r.gn.data(),
+                                 r.elev.data(),
+                                 curv ? r.cxx.data() : nullptr,
+                                 curv ? r.cxy.data() : nullptr,
+                                 curv ? r.cyy.data() : nullptr,
+                                 metric ? r.sx.data() : nullptr,
+                                 metric ? r.sy.data() : nullptr};
+        apply_sources_row(r.h.data(), r.hu.data(), r.hv.data(), t,
+                          SourceRowParams{sub, m, td, g, budget}, 0, n);
+        for (int i = 0; i < n; ++i) {
+            ASSERT_TRUE(same_bits(r.h[i], ref.h[i]) && same_bits(r.hu[i], ref.hu[i]) &&
+                        same_bits(r.hv[i], ref.hv[i]))
+                << "trial " << trial << " cell " << i << ": scalar (" << ref.hu[i] << ", "
+                << ref.hv[i] << ") row (" << r.hu[i] << ", " << r.hv[i] << ")";
+            ++cells;
+        }
+    }
+    EXPECT_EQ(cells, 64 * n);
+    EXPECT_GT(capped, 50);   // the energy cap acted
+    EXPECT_GT(stopped, 50);  // friction stopped cells
+}
+
+TEST(CellRows, CflRateRowIsTheScalarMaximum) {
+    std::mt19937_64 rng(20261204);
+    for (int trial = 0; trial < 50; ++trial) {
+        const int n = 40 + trial;
+        const Row r = random_row(rng, n);
+        const double kx = 1.7, ky = 0.6, dx = 5.0, dy = 4.0, h_min = 1e-4;
+        double ref = 0.0;
+        for (int i = 0; i < n; ++i) {
+            if (r.h[i] < h_min || r.h[i] <= 0.0) continue;
+            const double u = r.hu[i] / r.h[i], v = r.hv[i] / r.h[i];
+            const double rx = (std::abs(u) + std::sqrt(kx * r.px[i] * r.h[i])) / dx;
+            const double ry = (std::abs(v) + std::sqrt(ky * r.py[i] * r.h[i])) / dy;
+            ref = std::max(ref, std::max(rx, ry));
+        }
+        const double got = cfl_rate_row(r.h.data(), r.hu.data(), r.hv.data(), r.px.data(),
+                                        r.py.data(), kx, ky, dx, dy, h_min, 0, n);
+        ASSERT_TRUE(same_bits(ref, got))
+            << "trial " << trial << ": scalar " << ref << " row " << got;
+        ASSERT_GT(ref, 0.0);
+    }
+    // A row without a wet cell has rate 0.
+    std::vector<double> dry(17, 0.0), p(17, 9.81);
+    EXPECT_EQ(cfl_rate_row(dry.data(), dry.data(), dry.data(), p.data(), p.data(), 1.0, 1.0, 1.0,
+                           1.0, 1e-4, 0, 17),
+              0.0);
+}
