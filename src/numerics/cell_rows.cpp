@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "simd_clones.hpp"
 
 namespace avalanche {
 
 namespace {
+
+constexpr double kNoBound = std::numeric_limits<double>::max();  // as in advection.cpp
 
 // One sub-step of gravity and friction on the velocity (u, v) of a cell; returns
 // the true speed^2 after it.
@@ -114,6 +117,100 @@ double cfl_rate_row(const double* h, const double* hu, const double* hv, const d
                     const double* py, double kx, double ky, double dx, double dy, double h_min,
                     int i0, int i1) noexcept {
     return cfl_rate_clone(h, hu, hv, px, py, kx, ky, dx, dy, h_min, i0, i1);
+}
+
+// ---------------------------------------------------------------- pressure row
+
+namespace {
+
+template <bool Isotropic, bool Metric>
+AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRowOutput& out,
+                                    const PressureRowParams& p, int i, int im, int ip) {
+    const double hmin = p.h_min;
+    const auto vel = [hmin](double hh, double q) {
+        const double u = q / hh;  // discarded below h_min
+        return (hh >= hmin) & (hh > 0.0) ? u : 0.0;
+    };
+    // A vanishing gradient (at rest, or a uniformly moving block) counts as active:
+    // passive there made a mass released from rest start with the passive k everywhere
+    // and grow a period-4 pattern of regimes, with errors that rose under refinement
+    // (docs/verification.md, finding 2). "Vanishing" is relative (1e-12 of the
+    // velocities), so round-off cannot flip it.
+    const auto extends = [](double lo, double hi) {
+        return hi - lo >= -1e-12 * std::max(std::abs(lo), std::abs(hi));
+    };
+    const double hh = in.h[i];
+    double cx, cy;
+    if constexpr (Isotropic) {
+        cx = in.px[i];
+        cy = in.py[i];
+    } else {
+        // Active where the flow extends (du/dx > 0), passive where it compresses
+        // (Wang & Li 2017 after eq. 3).
+        const bool x_active = extends(vel(in.h[im], in.hu[im]), vel(in.h[ip], in.hu[ip]));
+        const bool y_active = extends(vel(in.h_s[i], in.hv_s[i]), vel(in.h_n[i], in.hv_n[i]));
+        const EarthPressureCoefficients& k = p.k;
+        const double kx = x_active ? k.kx_active : k.kx_passive;
+        const double ky =
+            x_active ? (y_active ? k.ky_given_kx_active_active : k.ky_given_kx_active_passive)
+                     : (y_active ? k.ky_given_kx_passive_active : k.ky_given_kx_passive_passive);
+        cx = kx * in.px[i];
+        cy = ky * in.py[i];
+    }
+    out.cx[i] = cx;
+    out.cy[i] = cy;
+    // Riemann invariants u -/+ 2a bound the velocities any Riemann fan started here can
+    // produce (the invariant domain of the system); the along-surface speed plus the
+    // along-surface dry-front celerity 2 sqrt(k g_n h_n) is frame-independent
+    // (docs/numerics.md, step 8). Dry and thin cells bound nothing.
+    const bool wet = (hh >= hmin) & (hh > 0.0);
+    const double u = in.hu[i] / hh, v = in.hv[i] / hh;
+    const double ax = 2.0 * std::sqrt(cx * hh), ay = 2.0 * std::sqrt(cy * hh);
+    double speed2 = u * u + v * v;
+    if constexpr (Metric) {
+        const double w = in.sx[i] * u + in.sy[i] * v;
+        speed2 += w * w;
+    }
+    const double shi = std::sqrt(speed2) + 2.0 * std::sqrt(p.k_max * in.gn[i] * hh * in.nt[i]);
+    out.u_lo[i] = wet ? u - ax : kNoBound;
+    out.u_hi[i] = wet ? u + ax : -kNoBound;
+    out.v_lo[i] = wet ? v - ay : kNoBound;
+    out.v_hi[i] = wet ? v + ay : -kNoBound;
+    out.speed_hi[i] = wet ? shi : 0.0;
+}
+
+template <bool Isotropic, bool Metric>
+AVALANCHE_SIMD_CLONES void pressure_row_clone(const PressureRowInput& in,
+                                              const PressureRowOutput& out,
+                                              const PressureRowParams& p, int i0, int i1, int lo,
+                                              int hi) {
+    // Central differences along the row, clamped at the padding columns lo and hi.
+    int a = i0, e = i1;
+    if (a < e && a == lo) {
+        pressure_lane<Isotropic, Metric>(in, out, p, a, a, std::min(a + 1, hi));
+        ++a;
+    }
+    if (a < e && e - 1 == hi) {
+        pressure_lane<Isotropic, Metric>(in, out, p, e - 1, std::max(e - 2, lo), e - 1);
+        --e;
+    }
+#pragma omp simd
+    for (int i = a; i < e; ++i) pressure_lane<Isotropic, Metric>(in, out, p, i, i - 1, i + 1);
+}
+
+}  // namespace
+
+void pressure_row(const PressureRowInput& in, const PressureRowOutput& out,
+                  const PressureRowParams& p, int i0, int i1, int lo, int hi) noexcept {
+    const bool metric = in.sx != nullptr;
+    if (p.isotropic && metric)
+        pressure_row_clone<true, true>(in, out, p, i0, i1, lo, hi);
+    else if (p.isotropic)
+        pressure_row_clone<true, false>(in, out, p, i0, i1, lo, hi);
+    else if (metric)
+        pressure_row_clone<false, true>(in, out, p, i0, i1, lo, hi);
+    else
+        pressure_row_clone<false, false>(in, out, p, i0, i1, lo, hi);
 }
 
 }  // namespace avalanche

@@ -147,16 +147,16 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double qt_ll, doub
             waf_component(f0.qt, f1t, f2t, f3.qt, w)};
 }
 
-AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0,
-                               int n, double h_dry) {
+AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out, int n,
+                               double h_dry) {
     const std::ptrdiff_t off = in.off;
-    const double* __restrict h = in.h + k0;
-    const double* __restrict qn = in.qn + k0;
-    const double* __restrict qt = in.qt + k0;
-    const double* __restrict c = in.c + k0;
-    double* __restrict oh = out.h + k0;
-    double* __restrict oqn = out.qn + k0;
-    double* __restrict oqt = out.qt + k0;
+    const double* __restrict h = in.h;
+    const double* __restrict qn = in.qn;
+    const double* __restrict qt = in.qt;
+    const double* __restrict c = in.c;
+    double* __restrict oh = out.h;
+    double* __restrict oqn = out.qn;
+    double* __restrict oqt = out.qt;
 #pragma omp simd
     for (int i = 0; i < n; ++i) {
         const FaceFlux f = hllc_lane(h[i - off], qn[i - off], qt[i - off], h[i], qn[i], qt[i],
@@ -168,16 +168,16 @@ AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out,
 }
 
 template <Limiter L>
-AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0,
-                              int n, double h_dry, double dt_over_dx) {
+AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry,
+                              double dt_over_dx) {
     const std::ptrdiff_t off = in.off;
-    const double* __restrict h = in.h + k0;
-    const double* __restrict qn = in.qn + k0;
-    const double* __restrict qt = in.qt + k0;
-    const double* __restrict c = in.c + k0;
-    double* __restrict oh = out.h + k0;
-    double* __restrict oqn = out.qn + k0;
-    double* __restrict oqt = out.qt + k0;
+    const double* __restrict h = in.h;
+    const double* __restrict qn = in.qn;
+    const double* __restrict qt = in.qt;
+    const double* __restrict c = in.c;
+    double* __restrict oh = out.h;
+    double* __restrict oqn = out.qn;
+    double* __restrict oqt = out.qt;
 #pragma omp simd
     for (int i = 0; i < n; ++i) {
         const double hll = h[i - 2 * off], hl = h[i - off], hr = h[i], hrr = h[i + off];
@@ -194,44 +194,39 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
     }
 }
 
-AVALANCHE_SIMD_CLONES void waf_row_superbee(const FaceRowInput& in, const FaceRowOutput& out,
-                                            std::ptrdiff_t k0, int n, double h_dry,
-                                            double dt_over_dx) {
-    waf_row<Limiter::superbee>(in, out, k0, n, h_dry, dt_over_dx);
+AVALANCHE_SIMD_CLONES void waf_row_superbee(const FaceRowInput& in, const FaceRowOutput& out, int n,
+                                            double h_dry, double dt_over_dx) {
+    waf_row<Limiter::superbee>(in, out, n, h_dry, dt_over_dx);
 }
-AVALANCHE_SIMD_CLONES void waf_row_van_leer(const FaceRowInput& in, const FaceRowOutput& out,
-                                            std::ptrdiff_t k0, int n, double h_dry,
-                                            double dt_over_dx) {
-    waf_row<Limiter::van_leer>(in, out, k0, n, h_dry, dt_over_dx);
+AVALANCHE_SIMD_CLONES void waf_row_van_leer(const FaceRowInput& in, const FaceRowOutput& out, int n,
+                                            double h_dry, double dt_over_dx) {
+    waf_row<Limiter::van_leer>(in, out, n, h_dry, dt_over_dx);
 }
 AVALANCHE_SIMD_CLONES void waf_row_van_albada(const FaceRowInput& in, const FaceRowOutput& out,
-                                              std::ptrdiff_t k0, int n, double h_dry,
-                                              double dt_over_dx) {
-    waf_row<Limiter::van_albada>(in, out, k0, n, h_dry, dt_over_dx);
+                                              int n, double h_dry, double dt_over_dx) {
+    waf_row<Limiter::van_albada>(in, out, n, h_dry, dt_over_dx);
 }
-AVALANCHE_SIMD_CLONES void waf_row_minmod(const FaceRowInput& in, const FaceRowOutput& out,
-                                          std::ptrdiff_t k0, int n, double h_dry,
-                                          double dt_over_dx) {
-    waf_row<Limiter::minmod>(in, out, k0, n, h_dry, dt_over_dx);
+AVALANCHE_SIMD_CLONES void waf_row_minmod(const FaceRowInput& in, const FaceRowOutput& out, int n,
+                                          double h_dry, double dt_over_dx) {
+    waf_row<Limiter::minmod>(in, out, n, h_dry, dt_over_dx);
 }
-AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOutput& out,
-                                        std::ptrdiff_t k0, int n, double h_dry) {
-    hllc_row(in, out, k0, n, h_dry);
+AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOutput& out, int n,
+                                        double h_dry) {
+    hllc_row(in, out, n, h_dry);
 }
 
 AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRowOutput& flux,
-                                             double ratio, const FaceRowOutput& out,
-                                             std::ptrdiff_t k0, int n) {
+                                             double ratio, const FaceRowOutput& out, int n) {
     const std::ptrdiff_t off = q.off;
-    const double* __restrict h = q.h + k0;
-    const double* __restrict qn = q.qn + k0;
-    const double* __restrict qt = q.qt + k0;
-    const double* __restrict fh = flux.h + k0;
-    const double* __restrict fqn = flux.qn + k0;
-    const double* __restrict fqt = flux.qt + k0;
-    double* __restrict ph = out.h + k0;
-    double* __restrict pqn = out.qn + k0;
-    double* __restrict pqt = out.qt + k0;
+    const double* __restrict h = q.h;
+    const double* __restrict qn = q.qn;
+    const double* __restrict qt = q.qt;
+    const double* __restrict fh = flux.h;
+    const double* __restrict fqn = flux.qn;
+    const double* __restrict fqt = flux.qt;
+    double* __restrict ph = out.h;
+    double* __restrict pqn = out.qn;
+    double* __restrict pqt = out.qt;
 #pragma omp simd
     for (int i = 0; i < n; ++i) {
         const double hh = h[i] - ratio * (fh[i + off] - fh[i]);
@@ -247,29 +242,28 @@ AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRo
 }  // namespace
 
 void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio,
-                   const FaceRowOutput& out, std::ptrdiff_t k0, int n) noexcept {
-    predictor_row_any(q, flux, ratio, out, k0, n);
+                   const FaceRowOutput& out, int n) noexcept {
+    predictor_row_any(q, flux, ratio, out, n);
 }
 
-void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n,
-                   double h_dry) noexcept {
-    hllc_row_any(in, out, k0, n, h_dry);
+void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry) noexcept {
+    hllc_row_any(in, out, n, h_dry);
 }
 
-void waf_face_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n,
-                  double h_dry, double dt_over_dx, Limiter limiter) noexcept {
+void waf_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry,
+                  double dt_over_dx, Limiter limiter) noexcept {
     switch (limiter) {
         case Limiter::superbee:
-            waf_row_superbee(in, out, k0, n, h_dry, dt_over_dx);
+            waf_row_superbee(in, out, n, h_dry, dt_over_dx);
             return;
         case Limiter::van_leer:
-            waf_row_van_leer(in, out, k0, n, h_dry, dt_over_dx);
+            waf_row_van_leer(in, out, n, h_dry, dt_over_dx);
             return;
         case Limiter::van_albada:
-            waf_row_van_albada(in, out, k0, n, h_dry, dt_over_dx);
+            waf_row_van_albada(in, out, n, h_dry, dt_over_dx);
             return;
         case Limiter::minmod:
-            waf_row_minmod(in, out, k0, n, h_dry, dt_over_dx);
+            waf_row_minmod(in, out, n, h_dry, dt_over_dx);
             return;
     }
 }

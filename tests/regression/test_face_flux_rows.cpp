@@ -62,13 +62,13 @@ template <class RowKernel, class Reference>
 long compare(const Block& b, RowKernel row, Reference reference) {
     long faces = 0;
     for (const std::ptrdiff_t off : {std::ptrdiff_t{1}, static_cast<std::ptrdiff_t>(b.width)}) {
-        const FaceRowInput in{b.h.data(), b.qn.data(), b.qt.data(), b.c.data(), off};
         std::vector<double> fh(b.h.size(), -1.0), fq(b.h.size(), -1.0), ft(b.h.size(), -1.0);
-        const FaceRowOutput out{fh.data(), fq.data(), ft.data()};
         for (int r = 2; r < b.rows + 2; ++r) {
             const std::ptrdiff_t k0 = static_cast<std::ptrdiff_t>(r) * b.width + 2;
             const int n = b.width - 3;  // faces k0 .. k0 + n - 1 keep k - 2, k + 1 in the row
-            row(in, out, k0, n);
+            const FaceRowInput in{b.h.data() + k0, b.qn.data() + k0, b.qt.data() + k0, b.c.data() + k0, off};
+            const FaceRowOutput out{fh.data() + k0, fq.data() + k0, ft.data() + k0};
+            row(in, out, n);
             for (std::ptrdiff_t k = k0; k < k0 + n; ++k) {
                 const Conserved ref = reference(at(b, k - 2 * off), at(b, k - off), at(b, k),
                                                 at(b, k + off), b.c[k - off], b.c[k]);
@@ -95,8 +95,7 @@ TEST(FaceFluxRows, FirstOrderRowIsBitwiseTheScalarHllcFlux) {
         const Block b = random_block(rng, 37 + trial % 9, 7, h_dry);
         faces += compare(
             b,
-            [&](const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n) {
-                hllc_face_row(in, out, k0, n, h_dry);
+            [&](const FaceRowInput& in, const FaceRowOutput& out, int n) { hllc_face_row(in, out, n, h_dry);
             },
             [&](const Conserved&, const Conserved& ql, const Conserved& qr, const Conserved&,
                 double cl, double cr) { return hllc_flux(ql, qr, cl, cr, h_dry); });
@@ -116,8 +115,8 @@ TEST(FaceFluxRows, WafRowIsBitwiseTheScalarWafFaceFluxForEveryLimiter) {
             const Block b = random_block(rng, 37 + trial % 9, 7, h_dry);
             faces += compare(
                 b,
-                [&](const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n) {
-                    waf_face_row(in, out, k0, n, h_dry, dt_dx, lim);
+                [&](const FaceRowInput& in, const FaceRowOutput& out, int n) {
+                    waf_face_row(in, out, n, h_dry, dt_dx, lim);
                 },
                 [&](const Conserved& qll, const Conserved& ql, const Conserved& qr,
                     const Conserved& qrr, double cl, double cr) {
@@ -146,10 +145,10 @@ TEST(FaceFluxRows, PredictorRowIsTheScalarHalfStep) {
             std::vector<double> ph(q.h.size()), pq(q.h.size()), pt(q.h.size());
             const std::ptrdiff_t k0 = 2 * q.width + 1;
             const int n = 3 * q.width;
-            predictor_row({q.h.data(), q.qn.data(), q.qt.data(), q.c.data(), off},
-                          {const_cast<double*>(f.h.data()), const_cast<double*>(f.qn.data()),
-                           const_cast<double*>(f.qt.data())},
-                          ratio, {ph.data(), pq.data(), pt.data()}, k0, n);
+            predictor_row({q.h.data() + k0, q.qn.data() + k0, q.qt.data() + k0, q.c.data() + k0, off},
+                          {const_cast<double*>(f.h.data()) + k0, const_cast<double*>(f.qn.data()) + k0,
+                           const_cast<double*>(f.qt.data()) + k0},
+                          ratio, {ph.data() + k0, pq.data() + k0, pt.data() + k0}, n);
             for (std::ptrdiff_t k = k0; k < k0 + n; ++k) {
                 // The loop of Stepper::godunov_predictor before it was vectorised.
                 double h = q.h[k] - ratio * (f.h[k + off] - f.h[k]);

@@ -1,9 +1,11 @@
 #pragma once
 // Per-cell kernels of one grid row, written for the vector units like the face
-// kernels (face_flux_rows.hpp): the point-wise sources and the CFL rate. Each is the
+// kernels (face_flux_rows.hpp): the point-wise sources, the CFL rate and the
+// advection's per-cell stage. Each is the
 // stepper's scalar loop body with its branches turned into selections, so the results
 // are bitwise those of the scalar code (tests/regression/test_cell_rows.cpp).
 // Pointers address element 0 of the row; cells i0 .. i1 - 1 are processed.
+#include "avalanche/physics/earth_pressure.hpp"
 
 namespace avalanche {
 
@@ -39,5 +41,33 @@ void apply_sources_row(double* h, double* hu, double* hv, const SourceRowTerrain
 double cfl_rate_row(const double* h, const double* hu, const double* hv, const double* px,
                     const double* py, double kx, double ky, double dx, double dy, double h_min,
                     int i0, int i1) noexcept;
+
+// Rows the pressure stage reads: the state's row r and its rows below (s) and above
+// (n), the terrain's row r; sx, sy null in bed-fitted frames.
+struct PressureRowInput {
+    const double *h, *hu, *hv;
+    const double *h_s, *hv_s, *h_n, *hv_n;
+    const double *px, *py, *gn, *nt, *sx, *sy;
+};
+
+// Per cell: the pressure coefficients k p and the invariant bounds of the update.
+struct PressureRowOutput {
+    double *cx, *cy, *u_lo, *u_hi, *v_lo, *v_hi, *speed_hi;
+};
+
+struct PressureRowParams {
+    EarthPressureCoefficients k;
+    double k_max;  // largest coefficient, for the along-surface speed bound
+    double h_min;
+    bool isotropic;
+};
+
+// The advection's per-cell stage on cells i0 .. i1 - 1 of one row (advection.cpp,
+// Stepper::pressure_row: active where the flow extends, passive where it compresses;
+// Riemann-invariant bounds u -/+ 2a, v -/+ 2a and the along-surface speed bound of wet
+// cells). The x-differences are clamped to the columns lo and hi. Output pointers
+// address column 0 like the inputs.
+void pressure_row(const PressureRowInput& in, const PressureRowOutput& out,
+                  const PressureRowParams& p, int i0, int i1, int lo, int hi) noexcept;
 
 }  // namespace avalanche

@@ -11,10 +11,12 @@
 // bitwise those of the scalar kernels, whatever vector width the machine has
 // (tests/regression/test_face_flux_rows.cpp).
 //
-// Layout: one row of faces; face n lies between the cells k - off and k, with
-// k = k0 + n, where off is 1 for x-faces and the row stride for y-faces. The
-// loads of both directions are contiguous in n. The "normal" momentum is hu for
-// x-faces and hv for y-faces (the tangential one the other).
+// Layout: one row of n faces; the pointers address the cell right of (above) the
+// first face, and face m lies between the cells m - off and m of them, where off is
+// 1 for x-faces and the row stride for y-faces; the outputs address the first face.
+// The loads of both directions are contiguous in m. Inputs and outputs may live in
+// arrays of different extents (the stepper's strip buffers) with the same stride. The "normal"
+// momentum is hu for x-faces and hv for y-faces (the tangential one the other).
 #include <cstddef>
 
 #include "avalanche/numerics/parameters.hpp"
@@ -35,26 +37,19 @@ struct FaceRowOutput {
     double* qt;
 };
 
-// First-order HLLC flux, bitwise hllc_flux(ql, qr, c_l, c_r, h_dry), of the faces
-// k0 .. k0 + n - 1.
-void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n,
-                   double h_dry) noexcept;
+// First-order HLLC flux, bitwise hllc_flux(ql, qr, c_l, c_r, h_dry), of n faces.
+void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry) noexcept;
 
-// WAF-TVD flux of Stepper::face_fluxes: the limited WAF flux of the HLLC fan, or the
+// WAF-TVD flux, bitwise waf_face_flux (waf_face.hpp): the limited WAF flux of the HLLC fan, or the
 // first-order flux where one of the four stencil cells is thinner than h_dry.
 // h_dry must be positive.
-void waf_face_row(const FaceRowInput& in, const FaceRowOutput& out, std::ptrdiff_t k0, int n,
-                  double h_dry, double dt_over_dx, Limiter limiter) noexcept;
+void waf_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry,
+                  double dt_over_dx, Limiter limiter) noexcept;
 
-}  // namespace avalanche
-
-namespace avalanche {
-
-// The transverse predictor's half step on one row of cells (Stepper::godunov_predictor,
-// Wang & Li 2017 eqs. 6-8): out(k) = q(k) - ratio (F(k + off) - F(k)) for the cells
-// k0 .. k0 + n - 1, where F(k) is the flux of the face before cell k; a cell left
+// The transverse predictor's half step on one row of cells (Wang & Li 2017 eqs. 6-8): out(m) = q(m) - ratio (F(m + off) - F(m)) for n cells,
+// where F(m) is the flux of the face before cell m; a cell left
 // with h <= 0 is set empty (predicted states only feed fluxes).
 void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio,
-                   const FaceRowOutput& out, std::ptrdiff_t k0, int n) noexcept;
+                   const FaceRowOutput& out, int n) noexcept;
 
 }  // namespace avalanche

@@ -14,6 +14,7 @@
 // The state's ghost cells are filled here from the boundary conditions.
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "avalanche/core/grid.hpp"
 #include "avalanche/core/state.hpp"
@@ -65,12 +66,37 @@ public:
     void fill_ghosts(State& s) const;  // every ghost cell
 
 private:
+    // Scratch of one strip of rows of the advection (advection.cpp): every array has
+    // the grid's row stride and holds the rows [base, base + rows) of one stage field.
+    // A thread works through consecutive strips, and the rows a strip shares with the
+    // next (three below its end, three above) are moved down and kept, so every stage
+    // row is computed once per thread.
+    struct StripBuffers {
+        std::ptrdiff_t stride = 0;
+        int ng = 0, base = 0, rows = 0;
+        std::vector<double> cx, cy;                            // k_x p_x and k_y p_y per cell
+        std::vector<double> u_lo, u_hi, v_lo, v_hi, speed_hi;  // invariant bounds (u -/+ 2a_x, ...)
+        std::vector<double> yfo_h, yfo_qn, yfo_qt;  // first-order y-faces of the y-predictor
+        std::vector<double> pred_h, pred_hu, pred_hv;  // state advanced by the x-predictor
+        std::vector<double> fx_h, fx_hu, fx_hv;  // x-face fluxes; face (i, r) left of cell i
+        std::vector<double> fy_h, fy_hu, fy_hv;  // y-face fluxes; face (i, r) below cell r
+        std::vector<double> factor;              // donor factors
+        std::vector<double> row_h, row_hu, row_hv;  // one row: a predictor's scratch
+        // Rows computed so far of each stage (end, exclusive), valid while the next
+        // strip starts at carried_for.
+        int carried_for = 0;
+        int p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
+        void allocate(std::ptrdiff_t row_stride, int row_capacity);
+        std::vector<std::vector<double>*> strip_arrays();
+        void shift_rows(int by);
+        [[nodiscard]] std::ptrdiff_t k(int i, int r) const {
+            return static_cast<std::ptrdiff_t>(r - base) * stride + (i + ng);
+        }
+    };
+
     void fill_ghosts_near(State& s, const ActiveBox& near) const;
-    void update_pressure_coefficients(const State& s);
-    void godunov_predictor(const State& s, double tau, bool along_x);
-    void face_fluxes(const State& s, const State& predicted, double tau, bool along_x, bool waf);
-    void fix_boundary_faces(const State& s);
-    void limit_and_update(State& s, double tau);
+    void pressure_row(const State& s, int r, int ia, int ib, StripBuffers& w) const;
+    void advect_strip(const State& s, double tau, int j_begin, int j_end, StripBuffers& w);
     void thin_layer_velocities(State& s) const;
     void shrink_box_to_wet(const State& s, const ActiveBox& search);
     [[nodiscard]] double energy_budget_in(const State& s, const ActiveBox& wet) const;
@@ -88,13 +114,11 @@ private:
 
     ActiveBox box_;       // cells updated this step
     ActiveBox wet_box_;   // bounding box of cells with h > 0
-    Field2D cx_, cy_;     // k_x p_x and k_y p_y per cell
-    State pred_;             // state advanced by the transverse predictor of the current sweep;
-                             // its h holds the donor factors during the update
-    State flux_x_, flux_y_;  // face fluxes; flux_x_(i, j) is the face left of cell i
-    Field2D u_lo_, u_hi_;    // u -/+ 2a_x per cell at the start of the update
-    Field2D v_lo_, v_hi_;    // v -/+ 2a_y
-    Field2D speed_hi_;       // along-surface speed + 2 sqrt(k g_n h_n)
+    State next_;                        // the state updated by the advection, box only
+    std::vector<StripBuffers> strips_;  // one per thread
+    // Rows per strip: the stage buffers of a strip (24 arrays of kStripRows + 6 rows)
+    // stay in a core's cache for grids up to a few thousand cells wide.
+    static constexpr int kStripRows = 16;
     double k_max_;           // largest earth-pressure coefficient
     double energy_budget_;   // see energy_budget(); +infinity = not set
     bool budget_set_ = false;
@@ -105,6 +129,7 @@ private:
     static constexpr std::size_t kMinCellsPerThreadedStep = 20000;
     bool threaded_ = false;
     double outflow_volume_ = 0.0;
+    std::array<std::vector<double>, 4> edge_outflow_;  // per face of the west, east, south, north edges
     std::uint64_t cell_updates_ = 0;
 };
 

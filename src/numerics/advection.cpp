@@ -1,0 +1,354 @@
+// The advection operator L(tau) of the stepper (stepper.hpp), computed strip by strip.
+//
+// The operator has seven stages: pressure coefficients and invariant bounds per cell,
+// the transverse predictor in y and the WAF x-fluxes, the predictor in x and the WAF
+// y-fluxes, the boundary faces, the donor factors, and the conservative update. Run
+// as whole-grid passes, every stage streams its inputs and outputs through memory: on
+// a 1000 x 1000 grid about 2 kB per cell update against ~11 GB/s of memory bandwidth
+// (docs/performance.md). Here the active box is cut into strips of kStripRows rows,
+// and one thread runs all stages for one strip into buffers of a few rows that stay
+// in its cache; only the state, the terrain and the updated state cross memory, and
+// the stage fields need no grid-sized storage.
+//
+// A strip's update needs the stages on a few rows beyond it (the stencil reaches
+// three rows up and down); those are computed again by the neighbouring strip, with
+// the same inputs and expressions, so every value is the one the whole-grid passes
+// computed, and the result does not depend on the strip height or the thread count.
+// The updated state is written to a second buffer (the neighbouring strips still
+// read the old one) and copied back when all strips are done.
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "avalanche/numerics/cell_rows.hpp"
+#include "avalanche/numerics/face_flux_rows.hpp"
+#include "avalanche/numerics/stepper.hpp"
+#include "avalanche/numerics/update_rows.hpp"
+#include "energy_cap.hpp"
+
+namespace avalanche {
+
+namespace {
+constexpr double kNoBound = std::numeric_limits<double>::max();
+
+}  // namespace
+
+void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity) {
+    stride = row_stride;
+    rows = row_capacity;
+    const std::size_t n = static_cast<std::size_t>(stride) * static_cast<std::size_t>(rows);
+    for (auto* a : strip_arrays()) a->assign(n, 0.0);
+    u_lo.assign(n, kNoBound);
+    v_lo.assign(n, kNoBound);
+    u_hi.assign(n, -kNoBound);
+    v_hi.assign(n, -kNoBound);
+    for (auto* a : {&row_h, &row_hu, &row_hv}) a->assign(static_cast<std::size_t>(stride), 0.0);
+}
+
+std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
+    return {&cx,    &cy,     &u_lo,   &u_hi,   &v_lo,    &v_hi,    &speed_hi,
+            &yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &fx_h,
+            &fx_hu, &fx_hv,  &fy_h,   &fy_hu,  &fy_hv,   &factor};
+}
+
+void Stepper::StripBuffers::shift_rows(int by) {
+    const std::size_t from = static_cast<std::size_t>(by) * static_cast<std::size_t>(stride);
+    for (auto* a : strip_arrays())
+        std::copy(a->begin() + static_cast<std::ptrdiff_t>(from), a->end(), a->begin());
+}
+
+// ---------------------------------------------------------------- stage 1: per cell
+
+// Pressure coefficients k p of row r (active where the flow extends, passive where it
+// compresses) and the invariant bounds of the update's clamp, columns [ia, ib).
+void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& w) const {
+    const bool metric = terrain_.has_metric;
+    const int ng = kGhostLayers;
+    // Central differences, clamped at the padding.
+    const int jm = std::max(r - 1, -ng), jp = std::min(r + 1, grid_.ny + ng - 1);
+    // Inputs and outputs address column 0 of row r.
+    const PressureRowInput in{s.h.row(r),
+                              s.hu.row(r),
+                              s.hv.row(r),
+                              s.h.row(jm),
+                              s.hv.row(jm),
+                              s.h.row(jp),
+                              s.hv.row(jp),
+                              terrain_.px.row(r),
+                              terrain_.py.row(r),
+                              terrain_.gn.row(r),
+                              terrain_.normal_thickness.row(r),
+                              metric ? terrain_.sx.row(r) : nullptr,
+                              metric ? terrain_.sy.row(r) : nullptr};
+    const std::ptrdiff_t o = w.k(0, r);
+    const PressureRowOutput out{w.cx.data() + o,      w.cy.data() + o,   w.u_lo.data() + o,
+                                w.u_hi.data() + o,    w.v_lo.data() + o, w.v_hi.data() + o,
+                                w.speed_hi.data() + o};
+    const PressureRowParams p{k_, k_max_, h_min_,
+                              material_.earth_pressure == EarthPressureModel::isotropic};
+    avalanche::pressure_row(in, out, p, ia, ib, -ng, grid_.nx + ng - 1);
+}
+
+// ---------------------------------------------------------------- one strip
+
+void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffers& w) {
+    const ActiveBox b = box_;
+    const int ng = kGhostLayers, nx = grid_.nx, ny = grid_.ny;
+    const bool waf = numerics_.scheme == Scheme::waf;
+    const double hd = h_min_;
+    const std::ptrdiff_t st = s.h.stride();
+    // The thread's previous strip ended at J: its rows from J - 3 up are this strip's
+    // lower rows; move them to the bottom of the buffers and compute only the rest.
+    // Otherwise start empty.
+    if (w.carried_for == J) {
+        w.shift_rows(J - 3 - w.base);
+    } else {
+        w.p_end = w.yfo_end = w.xf_end = w.xp_end = w.yf_end = w.fac_end =
+            std::numeric_limits<int>::min();
+    }
+    w.base = J - 3;
+    w.ng = ng;
+
+    // Row ranges [lo, hi) of the stages: the whole-box ranges of the operator, cut to
+    // what the update of rows [J, Je) reads.
+    const int pr0 = std::max(b.j0 - ng, -ng), pr1 = std::min(b.j1 + ng, ny + ng);  // per-cell stage
+    const int pc0 = std::max(b.i0 - ng, -ng), pc1 = std::min(b.i1 + ng, nx + ng);  // its columns
+    const int x0 = std::max(J - 1, b.j0), x1 = std::min(Je + 1, b.j1);  // x-faces (and y-predictor)
+    const int y0 = std::max(J - 1, b.j0), y1 = std::min(Je + 2, b.j1 + 1);  // y-faces
+    const int xp0 = std::max(y0 - 2, pr0), xp1 = std::min(y1 + 1, pr1);     // x-predictor
+    const int q0 = std::max(std::min({J - 1, x0 - 1, y0 - 1, xp0}), pr0);
+    const int q1 = std::min(std::max({Je + 1, x1 + 1, y1, xp1}), pr1);
+
+    // 1. Pressure coefficients and invariant bounds.
+    for (int r = std::max(q0, w.p_end); r < q1; ++r) pressure_row(s, r, pc0, pc1, w);
+    w.p_end = std::max(w.p_end, q1);
+
+    const double* sh = s.h.raw().data();
+    const double* shu = s.hu.raw().data();
+    const double* shv = s.hv.raw().data();
+    const auto full = [&](int i, int r) { return s.h.index(i, r); };
+    const auto face_in = [&](const double* h, const double* qn, const double* qt, std::ptrdiff_t kq,
+                             const std::vector<double>& c, std::ptrdiff_t kc, std::ptrdiff_t off) {
+        return FaceRowInput{h + kq, qn + kq, qt + kq, c.data() + kc, off};
+    };
+    const auto face_out = [](std::vector<double>& a, std::vector<double>& b2,
+                             std::vector<double>& c, std::ptrdiff_t k) {
+        return FaceRowOutput{a.data() + k, b2.data() + k, c.data() + k};
+    };
+    const double dt_dx = tau / grid_.dx, dt_dy = tau / grid_.dy;
+    const Limiter lim = numerics_.limiter;
+
+    // Walls pass no mass and no tangential momentum; open edges pass only outflow.
+    const bool wall = numerics_.boundary == Boundary::wall;
+    const auto fix = [&](double& fh, double& fn, double& ft, double outward_sign, int ii, int jj,
+                         double c) {
+        if (wall || fh * outward_sign < 0.0) {
+            // Wall flux: keep the normal momentum (pressure and reflection), no mass.
+            fh = 0.0;
+            ft = 0.0;
+            if (!wall) {
+                // Inflow at an open edge is refused; the interior's pressure acts as at a wall.
+                const double h = s.h(ii, jj) >= h_min_ ? s.h(ii, jj) : 0.0;
+                fn = 0.5 * c * h * h;
+            }
+        }
+    };
+    const auto fix_x_faces = [&](int r) {
+        if (b.i0 == 0) {
+            const std::ptrdiff_t k = w.k(0, r);
+            fix(w.fx_h[k], w.fx_hu[k], w.fx_hv[k], -1.0, 0, r, w.cx[k]);
+        }
+        if (b.i1 == nx) {
+            const std::ptrdiff_t k = w.k(nx, r);
+            fix(w.fx_h[k], w.fx_hu[k], w.fx_hv[k], 1.0, nx - 1, r, w.cx[w.k(nx - 1, r)]);
+        }
+    };
+    const auto fix_y_faces = [&](int r) {  // the face rows on the south and north edges
+        if (r != 0 && r != ny) return;
+        const int jj = r == 0 ? 0 : ny - 1;
+        for (int i = b.i0; i < b.i1; ++i) {
+            const std::ptrdiff_t k = w.k(i, r);
+            fix(w.fy_h[k], w.fy_hv[k], w.fy_hu[k], r == 0 ? -1.0 : 1.0, i, jj, w.cy[w.k(i, jj)]);
+        }
+    };
+
+    // 2. x-faces: WAF on the state advanced tau/2 in y (Wang & Li 2017 eqs. 6-9), or
+    // first-order HLLC on the state.
+    if (waf) {
+        const double ratio = 0.5 * tau / grid_.dy;
+        const int n = pc1 - pc0;
+        for (int r = std::max(x0, w.yfo_end); r <= x1;
+             ++r)  // first-order y-faces r (rows r - 1 | r)
+            hllc_face_row(face_in(sh, shv, shu, full(pc0, r), w.cy, w.k(pc0, r), st),
+                          face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), n, hd);
+        w.yfo_end = std::max(w.yfo_end, x1 + 1);
+        for (int r = std::max(x0, w.xf_end); r < x1; ++r) {
+            // The y-predictor of row r, used at once by the x-faces of row r.
+            predictor_row(face_in(sh, shv, shu, full(pc0, r), w.cy, w.k(pc0, r), st),
+                          face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), ratio,
+                          face_out(w.row_h, w.row_hv, w.row_hu, pc0 + ng), n);
+            const std::ptrdiff_t k = w.k(b.i0, r);
+            waf_face_row(FaceRowInput{w.row_h.data() + b.i0 + ng, w.row_hu.data() + b.i0 + ng,
+                                      w.row_hv.data() + b.i0 + ng, w.cx.data() + k, 1},
+                         face_out(w.fx_h, w.fx_hu, w.fx_hv, k), b.i1 + 1 - b.i0, hd, dt_dx, lim);
+            fix_x_faces(r);
+        }
+    } else {
+        for (int r = std::max(x0, w.xf_end); r < x1; ++r) {
+            hllc_face_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1),
+                          face_out(w.fx_h, w.fx_hu, w.fx_hv, w.k(b.i0, r)), b.i1 + 1 - b.i0, hd);
+            fix_x_faces(r);
+        }
+    }
+    w.xf_end = std::max(w.xf_end, x1);
+
+    // 3. y-faces: WAF on the state advanced tau/2 in x, or first-order HLLC.
+    if (waf) {
+        const double ratio = 0.5 * tau / grid_.dx;
+        const int n = b.i1 - b.i0;
+        for (int r = std::max(xp0, w.xp_end); r < xp1; ++r) {
+            const FaceRowOutput first_order{w.row_h.data() + b.i0 + ng, w.row_hu.data() + b.i0 + ng,
+                                            w.row_hv.data() + b.i0 + ng};
+            hllc_face_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), first_order,
+                          n + 1, hd);
+            predictor_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), first_order,
+                          ratio, face_out(w.pred_h, w.pred_hu, w.pred_hv, w.k(b.i0, r)), n);
+        }
+        w.xp_end = std::max(w.xp_end, xp1);
+        for (int r = std::max(y0, w.yf_end); r < y1; ++r) {
+            const std::ptrdiff_t k = w.k(b.i0, r);
+            waf_face_row(
+                face_in(w.pred_h.data(), w.pred_hv.data(), w.pred_hu.data(), k, w.cy, k, st),
+                face_out(w.fy_h, w.fy_hv, w.fy_hu, k), n, hd, dt_dy, lim);
+            fix_y_faces(r);
+        }
+    } else {
+        for (int r = std::max(y0, w.yf_end); r < y1; ++r) {
+            hllc_face_row(face_in(sh, shv, shu, full(b.i0, r), w.cy, w.k(b.i0, r), st),
+                          face_out(w.fy_h, w.fy_hv, w.fy_hu, w.k(b.i0, r)), b.i1 - b.i0, hd);
+            fix_y_faces(r);
+        }
+    }
+    w.yf_end = std::max(w.yf_end, y1);
+
+    // 4. Donor factors (positivity and the thin-layer rule, conservatively): each face
+    // flux is scaled by the factor of its donor cell (the cell its mass leaves), chosen
+    // so that no cell exports more than it holds; thin cells (h < h_min) export
+    // nothing. Faces reach one cell beyond the box; that ring is dry, so its faces
+    // carry no mass, but it is set to 1 so that no stale value can ever scale a flux.
+    const double rx = tau / grid_.dx, ry = tau / grid_.dy;
+    const auto rows_at = [&w](std::ptrdiff_t kw) {  // the face fluxes from buffer index kw
+        return FaceFluxRows{w.fx_h.data() + kw, w.fx_hu.data() + kw, w.fx_hv.data() + kw,
+                            w.fy_h.data() + kw, w.fy_hu.data() + kw, w.fy_hv.data() + kw};
+    };
+    const double* fxh = w.fx_h.data();
+    const double* fyh = w.fy_h.data();
+    double* factor = w.factor.data();
+    for (int r = std::max(J - 1, w.fac_end); r <= Je; ++r) {
+        if (r < b.j0 || r >= b.j1) {
+            for (int i = b.i0 - 1; i <= b.i1; ++i) factor[w.k(i, r)] = 1.0;
+            continue;
+        }
+        factor[w.k(b.i0 - 1, r)] = factor[w.k(b.i1, r)] = 1.0;
+        const std::ptrdiff_t kw = w.k(0, r);
+        donor_factor_row(rows_at(kw), sh + full(0, r), rx, ry, hd, st, factor + kw, b.i0, b.i1);
+    }
+    w.fac_end = std::max(w.fac_end, Je + 1);
+
+    // 5. Conservative update, U -= tau/dx dF + tau/dy dG (Wang & Li 2017 eq. 5), with
+    // the scaled fluxes, into next_. Each face is scaled by its donor's factor where it
+    // is used, so both cells of a face compute the same product (x * 1 == x exactly
+    // for the unscaled faces). A zero mass flux has no donor: its momentum (the
+    // pressure of a wall face) passes unscaled.
+    const auto donor = [factor](const double* fh, std::ptrdiff_t k, std::ptrdiff_t off) {
+        return fh[k] == 0.0 ? 1.0 : factor[fh[k] > 0.0 ? k - off : k];
+    };
+    const bool metric = terrain_.has_metric;
+    const UpdateRowParams up{rx, ry, st, energy_budget_, numerics_.gravity};
+    for (int r = J; r < Je; ++r) {
+        const std::ptrdiff_t kw = w.k(0, r), kf = full(0, r);
+        const UpdateRowInput in{rows_at(kw),
+                                factor + kw,
+                                w.u_lo.data() + kw,
+                                w.u_hi.data() + kw,
+                                w.v_lo.data() + kw,
+                                w.v_hi.data() + kw,
+                                w.speed_hi.data() + kw,
+                                sh + kf,
+                                shu + kf,
+                                shv + kf,
+                                terrain_.elevation.raw().data() + kf,
+                                metric ? terrain_.sx.raw().data() + kf : nullptr,
+                                metric ? terrain_.sy.raw().data() + kf : nullptr};
+        update_row(in, up, next_.h.raw().data() + kf, next_.hu.raw().data() + kf,
+                   next_.hv.raw().data() + kf, b.i0, b.i1);
+    }
+
+    // 6. Volume through the open edges, after scaling, per boundary face (summed in
+    // advect() in a fixed order).
+    const auto outflow = [&](const double* fh, std::ptrdiff_t k, std::ptrdiff_t off, double sign) {
+        return std::max(sign * (fh[k] * donor(fh, k, off)), 0.0);
+    };
+    for (int r = J; r < Je; ++r) {
+        if (b.i0 == 0) edge_outflow_[0][r] = outflow(fxh, w.k(0, r), 1, -1.0) * tau * grid_.dy;
+        if (b.i1 == nx) edge_outflow_[1][r] = outflow(fxh, w.k(nx, r), 1, 1.0) * tau * grid_.dy;
+    }
+    if (b.j0 == 0 && J == 0)
+        for (int i = b.i0; i < b.i1; ++i)
+            edge_outflow_[2][i] = outflow(fyh, w.k(i, 0), st, -1.0) * tau * grid_.dx;
+    if (b.j1 == ny && Je == ny)
+        for (int i = b.i0; i < b.i1; ++i)
+            edge_outflow_[3][i] = outflow(fyh, w.k(i, ny), st, 1.0) * tau * grid_.dx;
+    w.carried_for = Je;
+}
+
+// ---------------------------------------------------------------- the operator
+
+void Stepper::advect(State& s, double tau) {
+    fill_ghosts_near(s, box_);
+    const ActiveBox b = box_;
+    if (b.empty()) {
+        thin_layer_velocities(s);
+        return;
+    }
+    const int threads = threaded_ ? omp_get_max_threads() : 1;
+    if (static_cast<int>(strips_.size()) < threads)
+        strips_.resize(static_cast<std::size_t>(threads));
+    for (int t = 0; t < threads; ++t) {
+        StripBuffers& w = strips_[static_cast<std::size_t>(t)];
+        if (w.rows == 0) w.allocate(s.h.stride(), kStripRows + 6);
+        w.carried_for = std::numeric_limits<int>::min();  // a new state: nothing carries over
+    }
+    const int strips = (b.j1 - b.j0 + kStripRows - 1) / kStripRows;
+#pragma omp parallel for schedule(static) if (threaded_)
+    for (int t = 0; t < strips; ++t) {
+        const int j = b.j0 + t * kStripRows;
+        advect_strip(s, tau, j, std::min(j + kStripRows, b.j1),
+                     strips_[static_cast<std::size_t>(omp_get_thread_num())]);
+    }
+    // Volume through the open edges: west, east, south, north, in that order.
+    double out = 0.0;
+    if (b.i0 == 0)
+        for (int j = b.j0; j < b.j1; ++j) out += edge_outflow_[0][j];
+    if (b.i1 == grid_.nx)
+        for (int j = b.j0; j < b.j1; ++j) out += edge_outflow_[1][j];
+    if (b.j0 == 0)
+        for (int i = b.i0; i < b.i1; ++i) out += edge_outflow_[2][i];
+    if (b.j1 == grid_.ny)
+        for (int i = b.i0; i < b.i1; ++i) out += edge_outflow_[3][i];
+    outflow_volume_ += out;
+    // The updated box replaces the state.
+    const std::size_t w = static_cast<std::size_t>(b.i1 - b.i0);
+#pragma omp parallel for schedule(static) if (threaded_)
+    for (int j = b.j0; j < b.j1; ++j) {
+        std::copy_n(next_.h.row(j) + b.i0, w, s.h.row(j) + b.i0);
+        std::copy_n(next_.hu.row(j) + b.i0, w, s.hu.row(j) + b.i0);
+        std::copy_n(next_.hv.row(j) + b.i0, w, s.hv.row(j) + b.i0);
+    }
+    fill_ghosts_near(s, box_);
+    thin_layer_velocities(s);
+}
+
+}  // namespace avalanche

@@ -1,0 +1,21 @@
+#pragma once
+// The speed cap of the stepper's energy budget (stepper.hpp), shared by the
+// advection update (advection.cpp) and the thin-layer rule (stepper.cpp).
+#include <cmath>
+
+namespace avalanche {
+
+// Scales (u, v) so that the true speed^2 (speed2) does not exceed cap2; a cell
+// with cap2 <= 0 lies above everything the material can reach and stops.
+inline void cap_speed(double& u, double& v, double speed2, double cap2) {
+    if (speed2 <= cap2) return;
+    if (cap2 <= 0.0) {
+        u = v = 0.0;
+        return;
+    }
+    const double scale = std::sqrt(cap2 / speed2);
+    u *= scale;
+    v *= scale;
+}
+
+}  // namespace avalanche

@@ -1,0 +1,207 @@
+#include "avalanche/numerics/update_rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "energy_cap.hpp"
+#include "simd_clones.hpp"
+
+namespace avalanche {
+
+namespace {
+
+constexpr double kNoBound = std::numeric_limits<double>::max();  // as in advection.cpp
+constexpr double kRedo = std::numeric_limits<double>::quiet_NaN();
+
+// std::max(x, 0.0) on a value: std::max on an array element returns a reference to
+// one of its arguments, a conditional load GCC does not vectorise.
+AVALANCHE_INLINE double max0(double x) { return x < 0.0 ? 0.0 : x; }
+
+AVALANCHE_SIMD_CLONES void donor_factor_clone(const FaceFluxRows& f, const double* __restrict h,
+                                              double rx, double ry, double h_min, std::ptrdiff_t st,
+                                              double* __restrict factor, int i0, int i1) {
+    const double* __restrict fx = f.fx_h;
+    const double* __restrict fy = f.fy_h;
+#pragma omp simd
+    for (int i = i0; i < i1; ++i) {
+        const double hk = h[i];
+        const double out =
+            rx * (max0(fx[i + 1]) + max0(-fx[i])) + ry * (max0(fy[i + st]) + max0(-fy[i]));
+        const double share = hk / out;  // discarded unless the cell would be emptied
+        factor[i] = hk < h_min ? 0.0 : (out > hk ? share : 1.0);
+    }
+}
+
+// The donor factor of the face whose mass flux is fh: the factor of the cell the mass
+// leaves (below / left when fh > 0, else above / right); a zero mass flux has no donor
+// (its momentum, the pressure of a wall face, passes unscaled).
+AVALANCHE_INLINE double donor_of(double fh, double factor_before, double factor_after) {
+    return fh == 0.0 ? 1.0 : (fh > 0.0 ? factor_before : factor_after);
+}
+
+// The scalar update of one cell, the definition the vector loop follows; used for the
+// cells whose velocity leaves their own invariant bounds.
+void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric, double* h_new,
+                 double* hu_new, double* hv_new, int i) {
+    const std::ptrdiff_t st = p.stride;
+    const FaceFluxRows& f = in.f;
+    const double* factor = in.factor;
+    const double fw = donor_of(f.fx_h[i], factor[i - 1], factor[i]);
+    const double fe = donor_of(f.fx_h[i + 1], factor[i], factor[i + 1]);
+    const double fs = donor_of(f.fy_h[i], factor[i - st], factor[i]);
+    const double fn = donor_of(f.fy_h[i + st], factor[i], factor[i + st]);
+    const double rx = p.rx, ry = p.ry;
+    double hn = in.h[i] - rx * (f.fx_h[i + 1] * fe - f.fx_h[i] * fw) -
+                ry * (f.fy_h[i + st] * fn - f.fy_h[i] * fs);
+    if (hn < 0.0) hn = 0.0;
+    h_new[i] = hn;
+    const double qu = in.hu[i] - (rx * (f.fx_hu[i + 1] * fe - f.fx_hu[i] * fw) +
+                                  ry * (f.fy_hu[i + st] * fn - f.fy_hu[i] * fs));
+    const double qv = in.hv[i] - (rx * (f.fx_hv[i + 1] * fe - f.fx_hv[i] * fw) +
+                                  ry * (f.fy_hv[i + st] * fn - f.fy_hv[i] * fs));
+    if (hn <= 0.0) {
+        hu_new[i] = hv_new[i] = 0.0;
+        return;
+    }
+    // Min / max over the 3 x 3 block around i (exact, so the order does not matter).
+    const auto min9 = [st, i](const double* b) {
+        double m = kNoBound;
+        for (std::ptrdiff_t r = i - st; r <= i + st; r += st)
+            m = std::min({m, b[r - 1], b[r], b[r + 1]});
+        return m;
+    };
+    const auto max9 = [st, i](const double* b, double init) {
+        double m = init;
+        for (std::ptrdiff_t r = i - st; r <= i + st; r += st)
+            m = std::max({m, b[r - 1], b[r], b[r + 1]});
+        return m;
+    };
+    double u = qu / hn, v = qv / hn;
+    if (!(in.u_lo[i] <= u && u <= in.u_hi[i] && in.v_lo[i] <= v && v <= in.v_hi[i])) {
+        const double ulo = min9(in.u_lo), uhi = max9(in.u_hi, -kNoBound);
+        if (ulo > uhi) {  // no wet cell around: nothing can have moved it
+            hu_new[i] = hv_new[i] = 0.0;
+            return;
+        }
+        const double vlo = min9(in.v_lo), vhi = max9(in.v_hi, -kNoBound);
+        if (u < ulo || u > uhi) u = std::clamp(u, ulo, uhi);
+        if (v < vlo || v > vhi) v = std::clamp(v, vlo, vhi);
+    }
+    double speed2 = u * u + v * v;
+    if (metric) {
+        const double w = in.sx[i] * u + in.sy[i] * v;
+        speed2 += w * w;
+    }
+    if (speed2 > in.speed_hi[i] * in.speed_hi[i]) {  // again the own bound first
+        const double speed_bound = max9(in.speed_hi, 0.0);
+        if (speed2 > speed_bound * speed_bound) {
+            const double scale = speed_bound / std::sqrt(speed2);
+            u *= scale;
+            v *= scale;
+            speed2 = speed_bound * speed_bound;
+        }
+    }
+    cap_speed(u, v, speed2, 2.0 * (p.energy_budget - p.gravity * in.elevation[i]));
+    hu_new[i] = hn * u;
+    hv_new[i] = hn * v;
+}
+
+// The common case of every cell (the velocity within the cell's own bounds) with
+// selections; the other cells are marked for update_cell.
+template <bool Metric>
+AVALANCHE_SIMD_CLONES void update_clone(const UpdateRowInput& in, const UpdateRowParams& p,
+                                        double* __restrict h_new, double* __restrict hu_new,
+                                        double* __restrict hv_new, int i0, int i1) {
+    const std::ptrdiff_t st = p.stride;
+    const double rx = p.rx, ry = p.ry, budget = p.energy_budget, g = p.gravity;
+    const double* __restrict fxh = in.f.fx_h;
+    const double* __restrict fxu = in.f.fx_hu;
+    const double* __restrict fxv = in.f.fx_hv;
+    const double* __restrict fyh = in.f.fy_h;
+    const double* __restrict fyu = in.f.fy_hu;
+    const double* __restrict fyv = in.f.fy_hv;
+    const double* __restrict factor = in.factor;
+    const double* __restrict h = in.h;
+    const double* __restrict hu = in.hu;
+    const double* __restrict hv = in.hv;
+    const double* __restrict ulo = in.u_lo;
+    const double* __restrict uhi = in.u_hi;
+    const double* __restrict vlo = in.v_lo;
+    const double* __restrict vhi = in.v_hi;
+    const double* __restrict shi = in.speed_hi;
+    const double* __restrict elev = in.elevation;
+    const double* __restrict sx = in.sx;
+    const double* __restrict sy = in.sy;
+#pragma omp simd
+    for (int i = i0; i < i1; ++i) {
+        // The five factors are loaded before they are selected: a selection between
+        // two addresses would be a gather, which keeps the loop scalar.
+        const double f_w = factor[i - 1], f_c = factor[i], f_e = factor[i + 1];
+        const double f_s = factor[i - st], f_n = factor[i + st];
+        const double fw = donor_of(fxh[i], f_w, f_c);
+        const double fe = donor_of(fxh[i + 1], f_c, f_e);
+        const double fs = donor_of(fyh[i], f_s, f_c);
+        const double fn = donor_of(fyh[i + st], f_c, f_n);
+        double hn =
+            h[i] - rx * (fxh[i + 1] * fe - fxh[i] * fw) - ry * (fyh[i + st] * fn - fyh[i] * fs);
+        hn = hn < 0.0 ? 0.0 : hn;
+        const double qu =
+            hu[i] - (rx * (fxu[i + 1] * fe - fxu[i] * fw) + ry * (fyu[i + st] * fn - fyu[i] * fs));
+        const double qv =
+            hv[i] - (rx * (fxv[i + 1] * fe - fxv[i] * fw) + ry * (fyv[i + st] * fn - fyv[i] * fs));
+        h_new[i] = hn;
+        hu_new[i] = qu;  // momentum before the velocity bounds, finished below
+        hv_new[i] = qv;
+    }
+    // The velocity bounds as a second pass over the row (one loop with both parts is
+    // not vectorised by GCC 12).
+#pragma omp simd
+    for (int i = i0; i < i1; ++i) {
+        const double hn = h_new[i];
+        const bool empty = hn <= 0.0;
+        const double u = hu_new[i] / hn, v = hv_new[i] / hn;  // discarded when empty
+        // Within the cell's own bounds (a NaN velocity is not): written as a product of
+        // selections, as a chain of && or & is not vectorised by GCC 12.
+        const double own = (ulo[i] <= u ? 1.0 : 0.0) * (u <= uhi[i] ? 1.0 : 0.0) *
+                           (vlo[i] <= v ? 1.0 : 0.0) * (v <= vhi[i] ? 1.0 : 0.0);
+        double speed2 = u * u + v * v;
+        if constexpr (Metric) {
+            const double w = sx[i] * u + sy[i] * v;
+            speed2 += w * w;
+        }
+        const double slow = speed2 > shi[i] * shi[i] ? 0.0 : 1.0;
+        // The energy cap (cap_speed).
+        const double cap2 = 2.0 * (budget - g * elev[i]);
+        const double scale = std::sqrt(cap2 / speed2);
+        const bool over = !(speed2 <= cap2);
+        const double uc = over ? (cap2 <= 0.0 ? 0.0 : u * scale) : u;
+        const double vc = over ? (cap2 <= 0.0 ? 0.0 : v * scale) : v;
+        // A cell outside its own bounds is marked with a NaN momentum for
+        // update_cell (a NaN the update produces is recomputed there as well).
+        const bool redo = empty ? false : own * slow == 0.0;
+        hu_new[i] = redo ? kRedo : (empty ? 0.0 : hn * uc);
+        hv_new[i] = empty ? 0.0 : hn * vc;
+    }
+}
+
+}  // namespace
+
+void donor_factor_row(const FaceFluxRows& f, const double* h, double rx, double ry, double h_min,
+                      std::ptrdiff_t stride, double* factor, int i0, int i1) noexcept {
+    donor_factor_clone(f, h, rx, ry, h_min, stride, factor, i0, i1);
+}
+
+void update_row(const UpdateRowInput& in, const UpdateRowParams& p, double* h_new, double* hu_new,
+                double* hv_new, int i0, int i1) noexcept {
+    const bool metric = in.sx != nullptr;
+    if (metric)
+        update_clone<true>(in, p, h_new, hu_new, hv_new, i0, i1);
+    else
+        update_clone<false>(in, p, h_new, hu_new, hv_new, i0, i1);
+    for (int i = i0; i < i1; ++i)
+        if (std::isnan(hu_new[i])) update_cell(in, p, metric, h_new, hu_new, hv_new, i);
+}
+
+}  // namespace avalanche

@@ -1,0 +1,303 @@
+// The advection's per-cell kernels (update_rows.hpp: donor factors and the conservative
+// update with its velocity clamps; cell_rows.hpp: the pressure stage) must give
+// bitwise what the whole-grid scalar loops of the stepper gave before they were
+// vectorised. The references below are those loops (stepper.cpp, limit_and_update
+// and update_pressure_coefficients, 2026-11-22), kept here as the definition. Rows
+// mix empty, emptied, thin and wet cells, velocities inside and outside their own
+// invariant bounds, cells with no wet neighbour, speeds over the own and the 3 x 3
+// speed bound, and cells over the energy cap.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "avalanche/numerics/cell_rows.hpp"
+#include "avalanche/numerics/update_rows.hpp"
+
+using namespace avalanche;
+
+namespace {
+
+constexpr double kNoBound = std::numeric_limits<double>::max();
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Three rows (r - 1, r, r + 1) of width w; the row under test is the middle one.
+struct Rows {
+    int w;
+    std::vector<double> v;
+    explicit Rows(int width, double fill = 0.0)
+        : w(width), v(static_cast<std::size_t>(3 * width), fill) {}
+    double* mid() { return v.data() + w; }
+    const double* mid() const { return v.data() + w; }
+};
+
+void cap_speed_reference(double& u, double& v, double speed2, double cap2) {
+    if (speed2 <= cap2) return;
+    if (cap2 <= 0.0) {
+        u = v = 0.0;
+        return;
+    }
+    const double scale = std::sqrt(cap2 / speed2);
+    u *= scale;
+    v *= scale;
+}
+
+}  // namespace
+
+TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
+    std::mt19937_64 rng(20261206);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
+    const int w = 45;  // columns 1 .. w - 2 are updated: not a multiple of any vector width
+    const double rx = 0.05, ry = 0.04, h_min = 1e-3, g = 9.81;
+    long cells = 0, clamped = 0, emptied = 0, capped = 0, sped = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        const bool metric = trial % 2 == 1;
+        const double budget = trial % 3 == 0 ? std::numeric_limits<double>::infinity() : g * 30.0;
+        Rows fxh(w), fxu(w), fxv(w), fyh(w), fyu(w), fyv(w), h(w), hu(w), hv(w), elev(w), sx(w),
+            sy(w);
+        Rows ulo(w, kNoBound), uhi(w, -kNoBound), vlo(w, kNoBound), vhi(w, -kNoBound), shi(w);
+        for (int k = 0; k < 3 * w; ++k) {
+            const double kind = unit(rng);
+            h.v[k] = kind < 0.15 ? 0.0 : kind < 0.22 ? 0.5 * h_min : 3.0 * unit(rng);
+            const double u = 10.0 * sym(rng), v = 10.0 * sym(rng);
+            hu.v[k] = h.v[k] * u;
+            hv.v[k] = h.v[k] * v;
+            // Fluxes: some large enough to empty their donor, some exactly zero.
+            const double scale = unit(rng) < 0.2 ? 200.0 : 10.0;
+            fxh.v[k] = unit(rng) < 0.1 ? 0.0 : scale * sym(rng);
+            fyh.v[k] = unit(rng) < 0.1 ? 0.0 : scale * sym(rng);
+            fxu.v[k] = 50.0 * sym(rng);
+            fxv.v[k] = 50.0 * sym(rng);
+            fyu.v[k] = 50.0 * sym(rng);
+            fyv.v[k] = 50.0 * sym(rng);
+            elev.v[k] = 40.0 * unit(rng);
+            sx.v[k] = sym(rng);
+            sy.v[k] = sym(rng);
+            if (unit(rng) < 0.8) {  // a wet cell's bounds, some narrow enough to bind
+                const double a = unit(rng) < 0.3 ? 0.1 * unit(rng) : 20.0 * unit(rng);
+                ulo.v[k] = u - a;
+                uhi.v[k] = u + a;
+                vlo.v[k] = v - a;
+                vhi.v[k] = v + a;
+                shi.v[k] = unit(rng) < 0.3 ? 2.0 * unit(rng) : 30.0;
+            }
+        }
+        // Donor factors of all three rows by the kernel, against the reference.
+        Rows factor(w, 1.0), factor_ref(w, 1.0);
+        for (int r = 0; r < 3; ++r) {
+            if (r == 2) continue;  // the reference needs the row above; the top row stays 1
+            const int o = r * w;
+            const FaceFluxRows f{fxh.v.data() + o, fxu.v.data() + o, fxv.v.data() + o,
+                                 fyh.v.data() + o, fyu.v.data() + o, fyv.v.data() + o};
+            donor_factor_row(f, h.v.data() + o, rx, ry, h_min, w, factor.v.data() + o, 1, w - 1);
+            for (int i = 1; i < w - 1; ++i) {
+                const int k = o + i;
+                const double out = rx * (std::max(fxh.v[k + 1], 0.0) + std::max(-fxh.v[k], 0.0)) +
+                                   ry * (std::max(fyh.v[k + w], 0.0) + std::max(-fyh.v[k], 0.0));
+                double fr = 1.0;
+                if (h.v[k] < h_min)
+                    fr = 0.0;
+                else if (out > h.v[k])
+                    fr = h.v[k] / out;
+                factor_ref.v[k] = fr;
+                ASSERT_TRUE(same_bits(fr, factor.v[k])) << "trial " << trial << " factor " << k;
+            }
+        }
+        // The update of the middle row, with the reference's factors.
+        Rows nh(w, -7.0), nhu(w, -7.0), nhv(w, -7.0);
+        const UpdateRowInput in{{fxh.mid(), fxu.mid(), fxv.mid(), fyh.mid(), fyu.mid(), fyv.mid()},
+                                factor_ref.mid(),
+                                ulo.mid(),
+                                uhi.mid(),
+                                vlo.mid(),
+                                vhi.mid(),
+                                shi.mid(),
+                                h.mid(),
+                                hu.mid(),
+                                hv.mid(),
+                                elev.mid(),
+                                metric ? sx.mid() : nullptr,
+                                metric ? sy.mid() : nullptr};
+        update_row(in, UpdateRowParams{rx, ry, w, budget, g}, nh.mid(), nhu.mid(), nhv.mid(), 1,
+                   w - 1);
+        const double* factor_r = factor_ref.v.data();
+        const auto donor = [&](const std::vector<double>& fh, int k, int off) {
+            return fh[k] == 0.0 ? 1.0 : factor_r[fh[k] > 0.0 ? k - off : k];
+        };
+        const auto min9 = [&](const Rows& f, int k) {
+            double m = kNoBound;
+            for (int r = k - w; r <= k + w; r += w)
+                m = std::min({m, f.v[r - 1], f.v[r], f.v[r + 1]});
+            return m;
+        };
+        const auto max9 = [&](const Rows& f, int k, double init) {
+            double m = init;
+            for (int r = k - w; r <= k + w; r += w)
+                m = std::max({m, f.v[r - 1], f.v[r], f.v[r + 1]});
+            return m;
+        };
+        for (int i = 1; i < w - 1; ++i) {
+            const int k = w + i;
+            // The reference: limit_and_update's loop body.
+            double ref_h = 0.0, ref_hu = 0.0, ref_hv = 0.0;
+            [&] {
+                const double fw = donor(fxh.v, k, 1), fe = donor(fxh.v, k + 1, 1);
+                const double fs = donor(fyh.v, k, w), fn = donor(fyh.v, k + w, w);
+                double hn = h.v[k] - rx * (fxh.v[k + 1] * fe - fxh.v[k] * fw) -
+                            ry * (fyh.v[k + w] * fn - fyh.v[k] * fs);
+                if (hn < 0.0) hn = 0.0;
+                ref_h = hn;
+                const double qu = hu.v[k] - (rx * (fxu.v[k + 1] * fe - fxu.v[k] * fw) +
+                                             ry * (fyu.v[k + w] * fn - fyu.v[k] * fs));
+                const double qv = hv.v[k] - (rx * (fxv.v[k + 1] * fe - fxv.v[k] * fw) +
+                                             ry * (fyv.v[k + w] * fn - fyv.v[k] * fs));
+                if (hn <= 0.0) {
+                    ++emptied;
+                    return;
+                }
+                double u = qu / hn, v = qv / hn;
+                if (!(ulo.v[k] <= u && u <= uhi.v[k] && vlo.v[k] <= v && v <= vhi.v[k])) {
+                    ++clamped;
+                    const double lo = min9(ulo, k), hi = max9(uhi, k, -kNoBound);
+                    if (lo > hi) return;
+                    const double vl = min9(vlo, k), vh = max9(vhi, k, -kNoBound);
+                    if (u < lo || u > hi) u = std::clamp(u, lo, hi);
+                    if (v < vl || v > vh) v = std::clamp(v, vl, vh);
+                }
+                double speed2 = u * u + v * v;
+                if (metric) {
+                    const double ww = sx.v[k] * u + sy.v[k] * v;
+                    speed2 += ww * ww;
+                }
+                if (speed2 > shi.v[k] * shi.v[k]) {
+                    ++sped;
+                    const double bound = max9(shi, k, 0.0);
+                    if (speed2 > bound * bound) {
+                        const double scale = bound / std::sqrt(speed2);
+                        u *= scale;
+                        v *= scale;
+                        speed2 = bound * bound;
+                    }
+                }
+                const double cap2 = 2.0 * (budget - g * elev.v[k]);
+                if (speed2 > cap2) ++capped;
+                cap_speed_reference(u, v, speed2, cap2);
+                ref_hu = hn * u;
+                ref_hv = hn * v;
+            }();
+            ASSERT_TRUE(same_bits(ref_h, nh.v[k]) && same_bits(ref_hu, nhu.v[k]) &&
+                        same_bits(ref_hv, nhv.v[k]))
+                << "trial " << trial << " cell " << i << ": scalar (" << ref_h << ", " << ref_hu
+                << ", " << ref_hv << ") row (" << nh.v[k] << ", " << nhu.v[k] << ", " << nhv.v[k]
+                << ")";
+            ++cells;
+        }
+    }
+    EXPECT_EQ(cells, 60L * 43);
+    // Every path of the update was taken.
+    EXPECT_GT(emptied, 50);
+    EXPECT_GT(clamped, 50);
+    EXPECT_GT(sped, 50);
+    EXPECT_GT(capped, 20);
+}
+
+TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
+    std::mt19937_64 rng(20261207);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
+    const int w = 41, ng = 2;  // columns -2 .. w - 3 with the padding clamp at both ends
+    EarthPressureCoefficients kc;
+    kc.kx_active = 0.6;
+    kc.kx_passive = 2.4;
+    kc.ky_given_kx_active_active = 0.5;
+    kc.ky_given_kx_active_passive = 1.7;
+    kc.ky_given_kx_passive_active = 0.9;
+    kc.ky_given_kx_passive_passive = 3.1;
+    const double k_max = 3.1, h_min = 1e-3;
+    long active = 0, passive = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        const bool isotropic = trial % 4 == 3, metric = trial % 2 == 1;
+        Rows h(w), hu(w), hv(w), px(w), py(w), gn(w), nt(w), sx(w), sy(w);
+        for (int k = 0; k < 3 * w; ++k) {
+            const double kind = unit(rng);
+            h.v[k] = kind < 0.15 ? 0.0 : kind < 0.22 ? 0.5 * h_min : 3.0 * unit(rng);
+            // Some neighbours move alike (a vanishing gradient counts as active).
+            const double u = kind > 0.8 ? 2.0 : 10.0 * sym(rng);
+            hu.v[k] = h.v[k] * u;
+            hv.v[k] = h.v[k] * (kind > 0.8 ? -1.0 : 10.0 * sym(rng));
+            px.v[k] = 9.81 * unit(rng);
+            py.v[k] = 9.81 * unit(rng);
+            gn.v[k] = 9.81 * unit(rng);
+            nt.v[k] = 0.5 + unit(rng);
+            sx.v[k] = sym(rng);
+            sy.v[k] = sym(rng);
+        }
+        // Column i of the row is element i + ng.
+        const auto col0 = [&](Rows& f, int row) { return f.v.data() + row * w + ng; };
+        const PressureRowInput in{col0(h, 1),
+                                  col0(hu, 1),
+                                  col0(hv, 1),
+                                  col0(h, 0),
+                                  col0(hv, 0),
+                                  col0(h, 2),
+                                  col0(hv, 2),
+                                  col0(px, 1),
+                                  col0(py, 1),
+                                  col0(gn, 1),
+                                  col0(nt, 1),
+                                  metric ? col0(sx, 1) : nullptr,
+                                  metric ? col0(sy, 1) : nullptr};
+        std::vector<double> out_v(7 * static_cast<std::size_t>(w), -7.0);
+        const auto out_at = [&](int a) { return out_v.data() + a * w + ng; };
+        const PressureRowOutput out{out_at(0), out_at(1), out_at(2), out_at(3),
+                                    out_at(4), out_at(5), out_at(6)};
+        const int lo = -ng, hi = w - ng - 1;
+        pressure_row(in, out, PressureRowParams{kc, k_max, h_min, isotropic}, lo, hi + 1, lo, hi);
+        // The reference: update_pressure_coefficients' loop body.
+        const auto vel = [h_min](double hh, double q) {
+            return hh >= h_min && hh > 0.0 ? q / hh : 0.0;
+        };
+        const auto extends = [](double a, double b) {
+            return b - a >= -1e-12 * std::max(std::abs(a), std::abs(b));
+        };
+        for (int i = lo; i <= hi; ++i) {
+            const int k = w + i + ng;
+            double cx = px.v[k], cy = py.v[k];
+            if (!isotropic) {
+                const int im = std::max(i - 1, lo) + w + ng, ip = std::min(i + 1, hi) + w + ng;
+                const bool x_active = extends(vel(h.v[im], hu.v[im]), vel(h.v[ip], hu.v[ip]));
+                const bool y_active =
+                    extends(vel(h.v[k - w], hv.v[k - w]), vel(h.v[k + w], hv.v[k + w]));
+                (x_active ? active : passive)++;
+                cx = kc.kx(x_active) * px.v[k];
+                cy = kc.ky(x_active, y_active) * py.v[k];
+            }
+            double ref[7] = {cx, cy, kNoBound, -kNoBound, kNoBound, -kNoBound, 0.0};
+            const double hh = h.v[k];
+            if (hh >= h_min && hh > 0.0) {
+                const double u = hu.v[k] / hh, v = hv.v[k] / hh;
+                const double ax = 2.0 * std::sqrt(cx * hh), ay = 2.0 * std::sqrt(cy * hh);
+                ref[2] = u - ax;
+                ref[3] = u + ax;
+                ref[4] = v - ay;
+                ref[5] = v + ay;
+                double speed2 = u * u + v * v;
+                if (metric) {
+                    const double ww = sx.v[k] * u + sy.v[k] * v;
+                    speed2 += ww * ww;
+                }
+                ref[6] = std::sqrt(speed2) + 2.0 * std::sqrt(k_max * gn.v[k] * hh * nt.v[k]);
+            }
+            for (int a = 0; a < 7; ++a)
+                ASSERT_TRUE(same_bits(ref[a], out_at(a)[i]))
+                    << "trial " << trial << " column " << i << " output " << a << ": scalar "
+                    << ref[a] << " row " << out_at(a)[i];
+        }
+    }
+    EXPECT_GT(active, 100);
+    EXPECT_GT(passive, 100);
+}
