@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "avalanche/app/prepared_scene.hpp"
 #include "avalanche/app/progress_bar.hpp"
@@ -99,8 +100,9 @@ struct CheckpointArguments {
 };
 
 // Runs the scene into `out` and turns an interrupted run into exit code 6.
-int run_scene(const PreparedScene& scene, const Scenario& scenario, const std::string& out,
-              const GlobalOptions& global, double checkpoint_interval, const CheckpointContents* resume) {
+int run_scene(PreparedScene&& scene, const Scenario& scenario, const std::string& out,
+              const GlobalOptions& global, double checkpoint_interval,
+              const CheckpointContents* resume) {
     InterruptGuard interrupt;
     RunOptions options;
     options.out_dir = out;
@@ -108,7 +110,7 @@ int run_scene(const PreparedScene& scene, const Scenario& scenario, const std::s
     options.progress = make_progress(!global.quiet && ::isatty(::fileno(stderr)));
     options.checkpoint_interval = checkpoint_interval;
     options.resume = resume;
-    const RunOutcome outcome = execute_scene(scene, scenario, options);
+    const RunOutcome outcome = execute_scene(std::move(scene), scenario, options);
     if (!global.quiet) {
         const std::string dir = std::filesystem::path(outcome.summary_path).parent_path().string();
         std::cout << "maps: " << dir
@@ -141,8 +143,8 @@ int execute_new_run(const RunArguments& args, const GlobalOptions& global, doubl
     spdlog::debug("effective configuration: {}", effective_config(scenario).dump());
     set_threads(args.threads);
     prepare_output_folder(args.out, args.overwrite);
-    const PreparedScene scene = prepare_scene(scenario);
-    return run_scene(scene, scenario, args.out, global, checkpoint_interval, nullptr);
+    return run_scene(prepare_scene(scenario), scenario, args.out, global, checkpoint_interval,
+                     nullptr);
 }
 
 // Changes the working directory for the life of the guard: a resumed run reads its
@@ -182,8 +184,8 @@ int execute_resume(const std::string& dir, int threads, const GlobalOptions& glo
         throw InputError(checkpoint.path, "the recorded configuration does not match its hash " +
                                               checkpoint.info.config_hash + " (corrupt checkpoint?)");
     set_threads(threads > 0 ? threads : checkpoint.info.threads);
-    const PreparedScene scene = prepare_scene(scenario);
-    return run_scene(scene, scenario, out, global, checkpoint.info.checkpoint_interval, &checkpoint);
+    return run_scene(prepare_scene(scenario), scenario, out, global,
+                     checkpoint.info.checkpoint_interval, &checkpoint);
 }
 
 }  // namespace

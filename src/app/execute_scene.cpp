@@ -1,8 +1,12 @@
 #include <spdlog/spdlog.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -70,11 +74,21 @@ int openmp_threads() {
 #endif
 }
 
-}  // namespace
+// The cells that hold material (interior, row-major): the release outline of the report.
+std::vector<std::uint8_t> cells_with_material(const State& state, const Grid& g) {
+    std::vector<std::uint8_t> cells(g.cells());
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i)
+            cells[static_cast<std::size_t>(j) * g.nx + i] = state.h(i, j) > 0.0;
+    return cells;
+}
 
-RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const RunOptions& options) {
+// Both overloads of execute_scene: `initial` is the scene's initial state (copied or
+// moved out of it); scene.initial is not read.
+RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
+                   const RunOptions& options) {
     const std::filesystem::path dir(options.out_dir);
-    const double h_min = effective_h_min(s.numerics, scene.initial, scene.terrain);
+    const double h_min = effective_h_min(s.numerics, initial, scene.terrain);
     const nlohmann::json config = effective_config(s);
     const std::string hash = config_hash(config);
     const std::string checkpoint_path = (dir / "checkpoint.h5").string();
@@ -84,7 +98,7 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
         config,
         hash,
         std::filesystem::current_path().string(),
-        scene_fingerprint(scene.grid, scene.terrain, scene.initial, scene.outside_data, scene.probes),
+        scene_fingerprint(scene.grid, scene.terrain, initial, scene.outside_data, scene.probes),
         options.checkpoint_interval,
         openmp_threads(),
         software_version()};
@@ -102,8 +116,16 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
         std::filesystem::remove(diagnostic_path, ec);
     }
 
-    Simulation sim(scene.grid, scene.terrain, s.material, s.numerics, scene.initial, h_min);
-    if (!scene.outside_data.empty()) sim.set_sink_cells(scene.outside_data);
+    // What the products need of the initial state, before it moves into the simulation:
+    // the solver then holds the only copy (24 bytes per cell less at the peak).
+    const double released_volume = total_volume(initial, scene.grid);
+    const ReleaseTop top = release_top(scene.grid, scene.terrain, initial, s.output.h_threshold);
+    const std::vector<std::uint8_t> release_cells = cells_with_material(initial, scene.grid);
+    // Alive for the run only: the products need the maps and the statistics, not the
+    // solver's state and scratch (14 doubles per cell), whose memory they can reuse.
+    std::optional<Simulation> sim(std::in_place, scene.grid, scene.terrain, s.material, s.numerics,
+                                  std::move(initial), h_min);
+    if (!scene.outside_data.empty()) sim->set_sink_cells(scene.outside_data);
     ResultsMetadata meta{
         scene.geotransform, scene.crs_wkt, scene.frame, s.numerics.gravity, h_min, config, hash};
     ResultsWriter results((dir / "results.h5").string(), scene.grid, meta);
@@ -111,16 +133,16 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
     // Monitoring series every tenth of the snapshot interval: fine enough to see a
     // front pass a point, small enough to keep the CSV readable.
     MonitoringPoints probes(scene.probes, s.numerics.output_interval / 10.0, s.material.density);
-    sim.add_observer(&results);
-    sim.add_observer(&maps);
-    if (!scene.probes.empty()) sim.add_observer(&probes);
-    if (options.progress) sim.set_progress(options.progress);
-    sim.set_checkpointing(options.checkpoint_interval, [&](const SimulationCheckpoint& c) {
+    sim->add_observer(&results);
+    sim->add_observer(&maps);
+    if (!scene.probes.empty()) sim->add_observer(&probes);
+    if (options.progress) sim->set_progress(options.progress);
+    sim->set_checkpointing(options.checkpoint_interval, [&](const SimulationCheckpoint& c) {
         write_checkpoint(checkpoint_path, checkpoint_info, c, scene.grid, &results);
         spdlog::debug("checkpoint at t = {:.6g} s (step {}) in {}", c.loop.t, c.loop.steps, checkpoint_path);
     });
     bool diagnostic_written = false;
-    sim.set_fault_handler([&](const FaultReport& f) {
+    sim->set_fault_handler([&](const FaultReport& f) {
         try {
             write_diagnostic_checkpoint(diagnostic_path, checkpoint_info, f, scene.grid);
             diagnostic_written = true;
@@ -131,11 +153,11 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
     // Test hook (tests/cli/test_checkpoint_signals.cpp): a NaN after step N exercises
     // the numerical-fault path end to end, which no physical scene reaches on purpose.
     if (const char* step = std::getenv("AVALANCHE_TEST_FAULT_AFTER_STEP"))
-        sim.inject_fault_after_step(std::strtoull(step, nullptr, 10));
+        sim->inject_fault_after_step(std::strtoull(step, nullptr, 10));
     if (resume) {
         try {
             results.resume_from(resume->path);
-            sim.resume(resume->loop, resume->h, resume->hu, resume->hv, resume->observers);
+            sim->resume(resume->loop, resume->h, resume->hu, resume->hv, resume->observers);
         } catch (const InputError& e) {
             // The core names the checkpoint generically; say which file.
             throw InputError(resume->path, std::string("cannot resume: ") + e.what());
@@ -146,10 +168,10 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
 
     for (const auto& note : scene.input_notes) spdlog::info("{}", note);
     spdlog::info("{}; released {:.6g} m3; h_min {:.3g} m; config {}", scene.description,
-                 total_volume(scene.initial, scene.grid), h_min, hash);
+                 released_volume, h_min, hash);
     RunStatistics stats;
     try {
-        stats = sim.run();
+        stats = sim->run();
     } catch (const NumericalError& e) {
         remove_complete_markers(dir);
         throw Error(ExitCode::numerical,
@@ -157,6 +179,7 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
                                                  ? "; the last good and the failing state are in " + diagnostic_path
                                                  : "; no diagnostic checkpoint could be written"));
     }
+    sim.reset();
     const bool complete = stats.end_reason != EndReason::interrupted;
     if (!complete)
         spdlog::info("interrupted: the products below are marked incomplete; continue with "
@@ -172,9 +195,16 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
         stats.relative_mass_error());
 
     results.finish(stats);
-    const RunoutMetrics runout = compute_runout(scene.grid, scene.terrain, scene.initial, maps, s.output,
+    const RunoutMetrics runout = compute_runout(scene.grid, scene.terrain, top, maps, s.output,
                                                 scene.horizontal_position, scene.cell_area_m2);
-    const ProductInputs products{scene, s, maps, scene.probes.empty() ? nullptr : &probes, stats, runout, hash,
+    const ProductInputs products{scene,
+                                 release_cells,
+                                 s,
+                                 maps,
+                                 scene.probes.empty() ? nullptr : &probes,
+                                 stats,
+                                 runout,
+                                 hash,
                                  options.command_line};
     const std::vector<std::string> files = write_products(options.out_dir, products);
     write_report(options.out_dir, products, files);
@@ -198,6 +228,17 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
     const std::string summary_path = (dir / "summary.json").string();
     write_file_atomically(summary_path, js.dump(2) + "\n");
     return {stats, results.path(), summary_path};
+}
+
+}  // namespace
+
+RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const RunOptions& options) {
+    return execute(scene, scene.initial, s, options);
+}
+
+RunOutcome execute_scene(PreparedScene&& scene, const Scenario& s, const RunOptions& options) {
+    State initial = std::move(scene.initial);
+    return execute(scene, std::move(initial), s, options);
 }
 
 }  // namespace avalanche

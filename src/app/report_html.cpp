@@ -166,9 +166,7 @@ std::string maps_section(const std::string& dir, const ProductInputs& in) {
     if (!in.scene.crs_wkt.empty())
         overlay.crs_label = gis::GeoGrid{g, in.scene.crs_wkt}.crs_label();
     // The release as rasterized: the cells that held material at the start.
-    const std::vector<double> h0 = in.scene.initial.h.interior();
-    overlay.release.resize(h0.size());
-    for (std::size_t k = 0; k < h0.size(); ++k) overlay.release[k] = h0[k] > 0.0;
+    overlay.release = in.release_cells;
     if (in.probes) overlay.points = in.probes->points();
 
     std::ostringstream s;

@@ -5,20 +5,34 @@
 
 namespace avalanche {
 
+ReleaseTop release_top(const Grid& grid, const TerrainFields& terrain, const State& initial,
+                       double h_threshold) {
+    ReleaseTop top;
+    double top_z = -1e300;
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i)
+            if (initial.h(i, j) * terrain.normal_thickness(i, j) >= h_threshold &&
+                terrain.elevation(i, j) > top_z) {
+                top_z = terrain.elevation(i, j);
+                top = {i, j};
+            }
+    return top;
+}
+
 RunoutMetrics compute_runout(const Grid& grid, const TerrainFields& terrain, const State& initial,
+                             const HazardMaps& maps, const OutputParams& params,
+                             const HorizontalPosition& position, double cell_area_m2) {
+    return compute_runout(grid, terrain, release_top(grid, terrain, initial, params.h_threshold),
+                          maps, params, position, cell_area_m2);
+}
+
+RunoutMetrics compute_runout(const Grid& grid, const TerrainFields& terrain, ReleaseTop release,
                              const HazardMaps& maps, const OutputParams& params,
                              const HorizontalPosition& position, double cell_area_m2) {
     RunoutMetrics m;
     const double thr = params.h_threshold;
-    int top_i = -1, top_j = -1;
-    double top_z = -1e300;
-    for (int j = 0; j < grid.ny; ++j)
-        for (int i = 0; i < grid.nx; ++i)
-            if (initial.h(i, j) * terrain.normal_thickness(i, j) >= thr && terrain.elevation(i, j) > top_z) {
-                top_z = terrain.elevation(i, j);
-                top_i = i;
-                top_j = j;
-            }
+    const int top_i = release.i, top_j = release.j;
+    const double top_z = top_i >= 0 ? terrain.elevation(top_i, top_j) : -1e300;
     std::size_t reached = 0;
     double far2 = -1.0;
     int tip_i = -1, tip_j = -1;

@@ -65,8 +65,12 @@ struct RunOutcome {
 };
 
 // Runs the scene and writes DIR/results.h5 and DIR/summary.json (atomically). The scene
-// must outlive the call (the simulation reads its terrain in place).
+// must outlive the call (the simulation reads its terrain in place). The simulation
+// starts from a copy of scene.initial (`batch` runs several scenarios on one scene).
 RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const RunOptions& options);
+// The same for a scene run once (`run`): scene.initial moves into the simulation
+// instead of being copied, and is empty afterwards; the rest of the scene is kept.
+RunOutcome execute_scene(PreparedScene&& scene, const Scenario& s, const RunOptions& options);
 
 // Output folder rules: refuses (OutputError, exit 4) a folder that already holds
 // summary.json or results.h5 unless `overwrite`; creates a missing folder; checks that

@@ -2,6 +2,7 @@
 // The hazard products of a run (MODEL.md section 5) written into the output folder:
 // GeoTIFF maps (COG) with a QGIS style and a quick-look PNG each, the computational
 // DEM, monitoring-point series (CSV and HDF5) and a short Markdown report.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,9 @@
 namespace avalanche {
 
 struct ProductInputs {
-    const PreparedScene& scene;
+    const PreparedScene& scene;  // its initial state may have moved into the simulation
+    // Cells that held material at the start (interior, row-major, solver orientation).
+    const std::vector<std::uint8_t>& release_cells;
     const Scenario& scenario;
     const HazardMaps& maps;
     const MonitoringPoints* probes;  // null without monitoring points

@@ -37,8 +37,22 @@ struct RunoutMetrics {
 // in the chute frame the horizontal distance along the bed and y.
 using HorizontalPosition = std::function<std::array<double, 2>(int i, int j)>;
 
+// The top of the release: the cell with initial bed-normal depth >= h_threshold with the
+// highest bed (the first in row order among equals); i = j = -1 without one. All the
+// runout metrics need of the initial state, so a run can hand its state to the solver
+// and keep only this.
+struct ReleaseTop {
+    int i = -1, j = -1;
+};
+ReleaseTop release_top(const Grid& grid, const TerrainFields& terrain, const State& initial,
+                       double h_threshold);
+
 // cell_area_m2: horizontal area of a cell (the DEM frame's dx dy; in the chute
 // frame the bed area is used, as the chute has no map projection).
+RunoutMetrics compute_runout(const Grid& grid, const TerrainFields& terrain, ReleaseTop top,
+                             const HazardMaps& maps, const OutputParams& params,
+                             const HorizontalPosition& position, double cell_area_m2);
+// The same from the initial state (release_top with params.h_threshold).
 RunoutMetrics compute_runout(const Grid& grid, const TerrainFields& terrain, const State& initial,
                              const HazardMaps& maps, const OutputParams& params,
                              const HorizontalPosition& position, double cell_area_m2);
