@@ -53,10 +53,16 @@ std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
             &fx_hu, &fx_hv,  &fy_h,   &fy_hu,  &fy_hv,   &factor};
 }
 
-void Stepper::StripBuffers::shift_rows(int by) {
-    const std::size_t from = static_cast<std::size_t>(by) * static_cast<std::size_t>(stride);
-    for (auto* a : strip_arrays())
-        std::copy(a->begin() + static_cast<std::ptrdiff_t>(from), a->end(), a->begin());
+void Stepper::StripBuffers::shift_rows(int by, int i0, int i1) {
+    const std::size_t kept = static_cast<std::size_t>(rows - by);
+    const std::ptrdiff_t first = i0 + ng, width = i1 - i0;
+    for (auto* a : strip_arrays()) {
+        double* d = a->data();
+        for (std::size_t q = 0; q < kept; ++q) {
+            const std::ptrdiff_t to = static_cast<std::ptrdiff_t>(q) * stride + first;
+            std::copy_n(d + to + static_cast<std::ptrdiff_t>(by) * stride, width, d + to);
+        }
+    }
 }
 
 // ---------------------------------------------------------------- stage 1: per cell
@@ -102,19 +108,20 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     // The thread's previous strip ended at J: its rows from J - 3 up are this strip's
     // lower rows; move them to the bottom of the buffers and compute only the rest.
     // Otherwise start empty.
+    // Columns of the per-cell stage and the y-predictor: every column a stage uses.
+    const int pc0 = std::max(b.i0 - ng, -ng), pc1 = std::min(b.i1 + ng, nx + ng);
+    w.ng = ng;
     if (w.carried_for == J) {
-        w.shift_rows(J - 3 - w.base);
+        w.shift_rows(J - 3 - w.base, pc0, pc1);
     } else {
         w.p_end = w.yfo_end = w.xf_end = w.xp_end = w.yf_end = w.fac_end =
             std::numeric_limits<int>::min();
     }
     w.base = J - 3;
-    w.ng = ng;
 
     // Row ranges [lo, hi) of the stages: the whole-box ranges of the operator, cut to
     // what the update of rows [J, Je) reads.
     const int pr0 = std::max(b.j0 - ng, -ng), pr1 = std::min(b.j1 + ng, ny + ng);  // per-cell stage
-    const int pc0 = std::max(b.i0 - ng, -ng), pc1 = std::min(b.i1 + ng, nx + ng);  // its columns
     const int x0 = std::max(J - 1, b.j0), x1 = std::min(Je + 1, b.j1);  // x-faces (and y-predictor)
     const int y0 = std::max(J - 1, b.j0), y1 = std::min(Je + 2, b.j1 + 1);  // y-faces
     const int xp0 = std::max(y0 - 2, pr0), xp1 = std::min(y1 + 1, pr1);     // x-predictor

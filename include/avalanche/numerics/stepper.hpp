@@ -27,7 +27,7 @@
 namespace avalanche {
 
 class Stepper {
-public:
+  public:
     Stepper(const Grid& grid, const TerrainFields& terrain, const MaterialParams& material,
             const NumericsParams& numerics, double h_min);
 
@@ -65,7 +65,7 @@ public:
     void apply_sources(State& s, double dt) const;
     void fill_ghosts(State& s) const;  // every ghost cell
 
-private:
+  private:
     // Scratch of one strip of rows of the advection (advection.cpp): every array has
     // the grid's row stride and holds the rows [base, base + rows) of one stage field.
     // A thread works through consecutive strips, and the rows a strip shares with the
@@ -76,19 +76,19 @@ private:
         int ng = 0, base = 0, rows = 0;
         std::vector<double> cx, cy;                            // k_x p_x and k_y p_y per cell
         std::vector<double> u_lo, u_hi, v_lo, v_hi, speed_hi;  // invariant bounds (u -/+ 2a_x, ...)
-        std::vector<double> yfo_h, yfo_qn, yfo_qt;  // first-order y-faces of the y-predictor
+        std::vector<double> yfo_h, yfo_qn, yfo_qt;     // first-order y-faces of the y-predictor
         std::vector<double> pred_h, pred_hu, pred_hv;  // state advanced by the x-predictor
-        std::vector<double> fx_h, fx_hu, fx_hv;  // x-face fluxes; face (i, r) left of cell i
-        std::vector<double> fy_h, fy_hu, fy_hv;  // y-face fluxes; face (i, r) below cell r
-        std::vector<double> factor;              // donor factors
-        std::vector<double> row_h, row_hu, row_hv;  // one row: a predictor's scratch
+        std::vector<double> fx_h, fx_hu, fx_hv;        // x-face fluxes; face (i, r) left of cell i
+        std::vector<double> fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
+        std::vector<double> factor;                    // donor factors
+        std::vector<double> row_h, row_hu, row_hv;     // one row: a predictor's scratch
         // Rows computed so far of each stage (end, exclusive), valid while the next
         // strip starts at carried_for.
         int carried_for = 0;
         int p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
         void allocate(std::ptrdiff_t row_stride, int row_capacity);
         std::vector<std::vector<double>*> strip_arrays();
-        void shift_rows(int by);
+        void shift_rows(int by, int i0, int i1);  // rows up by `by`, columns [i0, i1)
         [[nodiscard]] std::ptrdiff_t k(int i, int r) const {
             return static_cast<std::ptrdiff_t>(r - base) * stride + (i + ng);
         }
@@ -102,7 +102,9 @@ private:
     [[nodiscard]] double energy_budget_in(const State& s, const ActiveBox& wet) const;
     // Square of the largest true speed the energy budget allows at bed elevation z
     // (negative: the cell lies above what the material can reach).
-    [[nodiscard]] double speed_cap2(double z) const { return 2.0 * (energy_budget_ - numerics_.gravity * z); }
+    [[nodiscard]] double speed_cap2(double z) const {
+        return 2.0 * (energy_budget_ - numerics_.gravity * z);
+    }
 
     Grid grid_;
     const TerrainFields& terrain_;
@@ -112,15 +114,15 @@ private:
     double tan_delta_;
     double h_min_;
 
-    ActiveBox box_;       // cells updated this step
-    ActiveBox wet_box_;   // bounding box of cells with h > 0
+    ActiveBox box_;                     // cells updated this step
+    ActiveBox wet_box_;                 // bounding box of cells with h > 0
     State next_;                        // the state updated by the advection, box only
     std::vector<StripBuffers> strips_;  // one per thread
     // Rows per strip: the stage buffers of a strip (24 arrays of kStripRows + 6 rows)
     // stay in a core's cache for grids up to a few thousand cells wide.
     static constexpr int kStripRows = 16;
-    double k_max_;           // largest earth-pressure coefficient
-    double energy_budget_;   // see energy_budget(); +infinity = not set
+    double k_max_;          // largest earth-pressure coefficient
+    double energy_budget_;  // see energy_budget(); +infinity = not set
     bool budget_set_ = false;
     // Small active areas run on one thread: a parallel region costs tens of
     // microseconds to wake the team, more than the work of a few thousand cells, and
@@ -129,7 +131,8 @@ private:
     static constexpr std::size_t kMinCellsPerThreadedStep = 20000;
     bool threaded_ = false;
     double outflow_volume_ = 0.0;
-    std::array<std::vector<double>, 4> edge_outflow_;  // per face of the west, east, south, north edges
+    std::array<std::vector<double>, 4>
+        edge_outflow_;  // per face of the west, east, south, north edges
     std::uint64_t cell_updates_ = 0;
 };
 
