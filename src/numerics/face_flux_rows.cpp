@@ -121,21 +121,20 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double qt_ll, doub
     const double dh_rup = h_rr - h_r, dq_rup = qn_rr - qn_r;  // the face upwind on the right
     const bool from_left_1 = s_l >= 0.0;
     const double loc_1 = (up_l * dh_loc - dq_loc) / two_a;
-    const double up_1_l = (up_l * dh_lup - dq_lup) / two_a,
-                 up_1_r = (up_l * dh_rup - dq_rup) / two_a;
-    const double up_1 = from_left_1 ? up_1_l : up_1_r;
+    // The upwind strengths: the numerator selected first, one division (the same
+    // quotient as dividing both and selecting).
+    const double up_1 = (from_left_1 ? up_l * dh_lup - dq_lup : up_l * dh_rup - dq_rup) / two_a;
     const bool from_left_3 = s_r >= 0.0;
     const double loc_3 = (dq_loc - up_r * dh_loc) / two_a;
-    const double up_3_l = (dq_lup - up_r * dh_lup) / two_a,
-                 up_3_r = (dq_rup - up_r * dh_rup) / two_a;
-    const double up_3 = from_left_3 ? up_3_l : up_3_r;
+    const double up_3 = (from_left_3 ? dq_lup - up_r * dh_lup : dq_rup - up_r * dh_rup) / two_a;
     // Shear wave: the jump of the transverse velocity.
     const bool from_left_2 = s_star >= 0.0;
-    const double v_ll_any = qt_ll / h_ll, v_rr_any = qt_rr / h_rr;
-    const double v_ll = (h_ll >= h_dry) & (h_ll > 0.0) ? v_ll_any : 0.0;
-    const double v_rr = (h_rr >= h_dry) & (h_rr > 0.0) ? v_rr_any : 0.0;
+    // The upwind cell's transverse velocity (of LL or RR), one division.
+    const double h_up = from_left_2 ? h_ll : h_rr, qt_up = from_left_2 ? qt_ll : qt_rr;
+    const double v_up_any = qt_up / h_up;
+    const double v_up = (h_up >= h_dry) & (h_up > 0.0) ? v_up_any : 0.0;
     const double dv_loc = vr - vl;
-    const double dv_up = from_left_2 ? vl - v_ll : v_rr - vr;
+    const double dv_up = from_left_2 ? vl - v_up : v_up - vr;
     const double tiny_v = kFlat * std::max(std::abs(vl), std::abs(vr));
 
     const double psi1 = psi_of<L>(ratio_of(up_1, loc_1, tiny_alpha));
@@ -167,7 +166,24 @@ AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out,
     }
 }
 
-template <Limiter L>
+// Fronts: whether a stencil cell of the row is thinner than h_dry. A row without one
+// (most rows of a flow) skips the first-order flux the selection would discard.
+AVALANCHE_INLINE bool row_has_front(const FaceRowInput& in, int n, double h_dry) {
+    const std::ptrdiff_t off = in.off;
+    double thinnest = h_dry;  // min over the stencil cells and h_dry
+    const auto scan = [&thinnest](const double* __restrict h, int first, int last) {
+#pragma omp simd reduction(min : thinnest)
+        for (int i = first; i < last; ++i) thinnest = std::min(thinnest, h[i]);
+    };
+    if (off == 1) {
+        scan(in.h, -2, n + 1);  // face i reads cells i - 2 .. i + 1 of the row
+    } else {
+        for (std::ptrdiff_t r = -2; r <= 1; ++r) scan(in.h + r * off, 0, n);  // four rows
+    }
+    return !(thinnest >= h_dry);
+}
+
+template <Limiter L, bool Fronts>
 AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry,
                               double dt_over_dx) {
     const std::ptrdiff_t off = in.off;
@@ -182,33 +198,51 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
     for (int i = 0; i < n; ++i) {
         const double hll = h[i - 2 * off], hl = h[i - off], hr = h[i], hrr = h[i + off];
         // At a wet/dry front (a stencil cell thinner than h_dry) the first-order flux.
-        const bool front = (hll < h_dry) | (hl < h_dry) | (hr < h_dry) | (hrr < h_dry);
-        const FaceFlux g =
-            hllc_lane(hl, qn[i - off], qt[i - off], hr, qn[i], qt[i], c[i - off], c[i], h_dry);
         const FaceFlux w = waf_lane<L>(hll, qn[i - 2 * off], qt[i - 2 * off], hl, qn[i - off],
                                        qt[i - off], hr, qn[i], qt[i], hrr, qn[i + off], qt[i + off],
                                        c[i - off], c[i], h_dry, dt_over_dx);
-        oh[i] = front ? g.h : w.h;
-        oqn[i] = front ? g.qn : w.qn;
-        oqt[i] = front ? g.qt : w.qt;
+        if constexpr (Fronts) {
+            const bool front = (hll < h_dry) | (hl < h_dry) | (hr < h_dry) | (hrr < h_dry);
+            const FaceFlux g =
+                hllc_lane(hl, qn[i - off], qt[i - off], hr, qn[i], qt[i], c[i - off], c[i], h_dry);
+            oh[i] = front ? g.h : w.h;
+            oqn[i] = front ? g.qn : w.qn;
+            oqt[i] = front ? g.qt : w.qt;
+        } else {
+            oh[i] = w.h;
+            oqn[i] = w.qn;
+            oqt[i] = w.qt;
+        }
     }
 }
 
 AVALANCHE_SIMD_CLONES void waf_row_superbee(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                             double h_dry, double dt_over_dx) {
-    waf_row<Limiter::superbee>(in, out, n, h_dry, dt_over_dx);
+    if (row_has_front(in, n, h_dry))
+        waf_row<Limiter::superbee, true>(in, out, n, h_dry, dt_over_dx);
+    else
+        waf_row<Limiter::superbee, false>(in, out, n, h_dry, dt_over_dx);
 }
 AVALANCHE_SIMD_CLONES void waf_row_van_leer(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                             double h_dry, double dt_over_dx) {
-    waf_row<Limiter::van_leer>(in, out, n, h_dry, dt_over_dx);
+    if (row_has_front(in, n, h_dry))
+        waf_row<Limiter::van_leer, true>(in, out, n, h_dry, dt_over_dx);
+    else
+        waf_row<Limiter::van_leer, false>(in, out, n, h_dry, dt_over_dx);
 }
 AVALANCHE_SIMD_CLONES void waf_row_van_albada(const FaceRowInput& in, const FaceRowOutput& out,
                                               int n, double h_dry, double dt_over_dx) {
-    waf_row<Limiter::van_albada>(in, out, n, h_dry, dt_over_dx);
+    if (row_has_front(in, n, h_dry))
+        waf_row<Limiter::van_albada, true>(in, out, n, h_dry, dt_over_dx);
+    else
+        waf_row<Limiter::van_albada, false>(in, out, n, h_dry, dt_over_dx);
 }
 AVALANCHE_SIMD_CLONES void waf_row_minmod(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                           double h_dry, double dt_over_dx) {
-    waf_row<Limiter::minmod>(in, out, n, h_dry, dt_over_dx);
+    if (row_has_front(in, n, h_dry))
+        waf_row<Limiter::minmod, true>(in, out, n, h_dry, dt_over_dx);
+    else
+        waf_row<Limiter::minmod, false>(in, out, n, h_dry, dt_over_dx);
 }
 AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                         double h_dry) {
