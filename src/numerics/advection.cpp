@@ -53,12 +53,11 @@ std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
             &fx_hu, &fx_hv,  &fy_h,   &fy_hu,  &fy_hv,   &factor};
 }
 
-void Stepper::StripBuffers::shift_rows(int by, int i0, int i1) {
-    const std::size_t kept = static_cast<std::size_t>(rows - by);
+void Stepper::StripBuffers::shift_rows(int by, int first_row, int i0, int i1) {
     const std::ptrdiff_t first = i0 + ng, width = i1 - i0;
     for (auto* a : strip_arrays()) {
         double* d = a->data();
-        for (std::size_t q = 0; q < kept; ++q) {
+        for (int q = first_row; q < rows - by; ++q) {
             const std::ptrdiff_t to = static_cast<std::ptrdiff_t>(q) * stride + first;
             std::copy_n(d + to + static_cast<std::ptrdiff_t>(by) * stride, width, d + to);
         }
@@ -112,7 +111,9 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     const int pc0 = std::max(b.i0 - ng, -ng), pc1 = std::min(b.i1 + ng, nx + ng);
     w.ng = ng;
     if (w.carried_for == J) {
-        w.shift_rows(J - 3 - w.base, pc0, pc1);
+        // The next strip reads none of its stage rows below J - 1 (the update's
+        // 3 x 3 reach): rows J - 3 and J - 2 of the buffers stay unused.
+        w.shift_rows(J - 3 - w.base, 2, pc0, pc1);
     } else {
         w.p_end = w.yfo_end = w.xf_end = w.xp_end = w.yf_end = w.fac_end =
             std::numeric_limits<int>::min();

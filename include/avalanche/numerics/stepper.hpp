@@ -88,7 +88,8 @@ class Stepper {
         int p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
         void allocate(std::ptrdiff_t row_stride, int row_capacity);
         std::vector<std::vector<double>*> strip_arrays();
-        void shift_rows(int by, int i0, int i1);  // rows up by `by`, columns [i0, i1)
+        // Moves rows [first_row + by, rows) down by `by` rows, columns [i0, i1).
+        void shift_rows(int by, int first_row, int i0, int i1);
         [[nodiscard]] std::ptrdiff_t k(int i, int r) const {
             return static_cast<std::ptrdiff_t>(r - base) * stride + (i + ng);
         }
