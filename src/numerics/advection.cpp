@@ -48,9 +48,9 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity
 }
 
 std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
-    return {&cx,    &cy,     &u_lo,   &u_hi,   &v_lo,    &v_hi,    &speed_hi,
-            &yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &fx_h,
-            &fx_hu, &fx_hv,  &fy_h,   &fy_hu,  &fy_hv,   &factor};
+    return {&su,       &sv,    &cx,     &cy,     &u_lo,   &u_hi,    &v_lo,    &v_hi,
+            &speed_hi, &yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &fx_h,
+            &fx_hu,    &fx_hv, &fy_h,   &fy_hu,  &fy_hv,  &factor};
 }
 
 void Stepper::StripBuffers::shift_rows(int by, int first_row, int i0, int i1) {
@@ -74,20 +74,20 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
     // Central differences, clamped at the padding.
     const int jm = std::max(r - 1, -ng), jp = std::min(r + 1, grid_.ny + ng - 1);
     // Inputs and outputs address column 0 of row r.
+    const std::ptrdiff_t o = w.k(0, r);
     const PressureRowInput in{s.h.row(r),
-                              s.hu.row(r),
-                              s.hv.row(r),
+                              w.su.data() + o,
+                              w.sv.data() + o,
                               s.h.row(jm),
-                              s.hv.row(jm),
+                              w.sv.data() + w.k(0, jm),
                               s.h.row(jp),
-                              s.hv.row(jp),
+                              w.sv.data() + w.k(0, jp),
                               terrain_.px.row(r),
                               terrain_.py.row(r),
                               terrain_.gn.row(r),
                               terrain_.normal_thickness.row(r),
                               metric ? terrain_.sx.row(r) : nullptr,
                               metric ? terrain_.sy.row(r) : nullptr};
-    const std::ptrdiff_t o = w.k(0, r);
     const PressureRowOutput out{w.cx.data() + o,      w.cy.data() + o,   w.u_lo.data() + o,
                                 w.u_hi.data() + o,    w.v_lo.data() + o, w.v_hi.data() + o,
                                 w.speed_hi.data() + o};
@@ -112,13 +112,13 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     w.ng = ng;
     if (w.carried_for == J) {
         // The next strip reads none of its stage rows below J - 1 (the update's
-        // 3 x 3 reach): rows J - 3 and J - 2 of the buffers stay unused.
-        w.shift_rows(J - 3 - w.base, 2, pc0, pc1);
+        // 3 x 3 reach): the buffers' rows J - 4 .. J - 2 stay unused.
+        w.shift_rows(J - 4 - w.base, 3, pc0, pc1);
     } else {
-        w.p_end = w.yfo_end = w.xf_end = w.xp_end = w.yf_end = w.fac_end =
+        w.vel_end = w.p_end = w.yfo_end = w.xf_end = w.xp_end = w.yf_end = w.fac_end =
             std::numeric_limits<int>::min();
     }
-    w.base = J - 3;
+    w.base = J - 4;
 
     // Row ranges [lo, hi) of the stages: the whole-box ranges of the operator, cut to
     // what the update of rows [J, Je) reads.
@@ -130,6 +130,16 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     const int q1 = std::min(std::max({Je + 1, x1 + 1, y1, xp1}), pr1);
 
     // 1. Pressure coefficients and invariant bounds.
+    // 0. The velocity quotients of the state, once per cell, for the pressure stage
+    // (rows q0 - 1 .. q1) and the first-order fluxes on the state (rows J - 4 .. Je + 2).
+    const int v0 = std::max(J - 4, -ng), v1 = std::min(Je + 4, ny + ng);
+    for (int r = std::max(v0, w.vel_end); r < v1; ++r) {
+        const std::ptrdiff_t k = w.k(0, r);
+        state_velocity_row(s.h.row(r), s.hu.row(r), s.hv.row(r), w.su.data() + k, w.sv.data() + k,
+                           pc0, pc1);
+    }
+    w.vel_end = std::max(w.vel_end, v1);
+
     for (int r = std::max(q0, w.p_end); r < q1; ++r) pressure_row(s, r, pc0, pc1, w);
     w.p_end = std::max(w.p_end, q1);
 
@@ -140,6 +150,13 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     const auto face_in = [&](const double* h, const double* qn, const double* qt, std::ptrdiff_t kq,
                              const std::vector<double>& c, std::ptrdiff_t kc, std::ptrdiff_t off) {
         return FaceRowInput{h + kq, qn + kq, qt + kq, c.data() + kc, off};
+    };
+    // The same with the state's velocity quotients (normal un, tangential ut) from buffer index kv.
+    const auto with_velocities = [](FaceRowInput in, const std::vector<double>& un,
+                                    const std::vector<double>& ut, std::ptrdiff_t kv) {
+        in.un = un.data() + kv;
+        in.ut = ut.data() + kv;
+        return in;
     };
     const auto face_out = [](std::vector<double>& a, std::vector<double>& b2,
                              std::vector<double>& c, std::ptrdiff_t k) {
@@ -189,8 +206,10 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
         const int n = pc1 - pc0;
         for (int r = std::max(x0, w.yfo_end); r <= x1;
              ++r)  // first-order y-faces r (rows r - 1 | r)
-            hllc_face_row(face_in(sh, shv, shu, full(pc0, r), w.cy, w.k(pc0, r), st),
-                          face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), n, hd);
+            hllc_face_row(
+                with_velocities(face_in(sh, shv, shu, full(pc0, r), w.cy, w.k(pc0, r), st), w.sv,
+                                w.su, w.k(pc0, r)),
+                face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), n, hd);
         w.yfo_end = std::max(w.yfo_end, x1 + 1);
         for (int r = std::max(x0, w.xf_end); r < x1; ++r) {
             // The y-predictor of row r, used at once by the x-faces of row r.
@@ -205,8 +224,10 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
         }
     } else {
         for (int r = std::max(x0, w.xf_end); r < x1; ++r) {
-            hllc_face_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1),
-                          face_out(w.fx_h, w.fx_hu, w.fx_hv, w.k(b.i0, r)), b.i1 + 1 - b.i0, hd);
+            hllc_face_row(
+                with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), w.su,
+                                w.sv, w.k(b.i0, r)),
+                face_out(w.fx_h, w.fx_hu, w.fx_hv, w.k(b.i0, r)), b.i1 + 1 - b.i0, hd);
             fix_x_faces(r);
         }
     }
@@ -219,8 +240,10 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
         for (int r = std::max(xp0, w.xp_end); r < xp1; ++r) {
             const FaceRowOutput first_order{w.row_h.data() + b.i0 + ng, w.row_hu.data() + b.i0 + ng,
                                             w.row_hv.data() + b.i0 + ng};
-            hllc_face_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), first_order,
-                          n + 1, hd);
+            hllc_face_row(
+                with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), w.su,
+                                w.sv, w.k(b.i0, r)),
+                first_order, n + 1, hd);
             predictor_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), first_order,
                           ratio, face_out(w.pred_h, w.pred_hu, w.pred_hv, w.k(b.i0, r)), n);
         }
@@ -234,8 +257,10 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
         }
     } else {
         for (int r = std::max(y0, w.yf_end); r < y1; ++r) {
-            hllc_face_row(face_in(sh, shv, shu, full(b.i0, r), w.cy, w.k(b.i0, r), st),
-                          face_out(w.fy_h, w.fy_hv, w.fy_hu, w.k(b.i0, r)), b.i1 - b.i0, hd);
+            hllc_face_row(
+                with_velocities(face_in(sh, shv, shu, full(b.i0, r), w.cy, w.k(b.i0, r), st), w.sv,
+                                w.su, w.k(b.i0, r)),
+                face_out(w.fy_h, w.fy_hv, w.fy_hu, w.k(b.i0, r)), b.i1 - b.i0, hd);
             fix_y_faces(r);
         }
     }
@@ -326,7 +351,7 @@ void Stepper::advect(State& s, double tau) {
         strips_.resize(static_cast<std::size_t>(threads));
     for (int t = 0; t < threads; ++t) {
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
-        if (w.rows == 0) w.allocate(s.h.stride(), kStripRows + 6);
+        if (w.rows == 0) w.allocate(s.h.stride(), kStripRows + 8);
         w.carried_for = std::numeric_limits<int>::min();  // a new state: nothing carries over
     }
     const int strips = (b.j1 - b.j0 + kStripRows - 1) / kStripRows;

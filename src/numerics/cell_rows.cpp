@@ -127,9 +127,8 @@ template <bool Isotropic, bool Metric>
 AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRowOutput& out,
                                     const PressureRowParams& p, int i, int im, int ip) {
     const double hmin = p.h_min;
-    const auto vel = [hmin](double hh, double q) {
-        const double u = q / hh;  // discarded below h_min
-        return (hh >= hmin) & (hh > 0.0) ? u : 0.0;
+    const auto vel = [hmin](double hh, double quotient) {  // the quotient q / hh
+        return (hh >= hmin) & (hh > 0.0) ? quotient : 0.0;
     };
     // A vanishing gradient (at rest, or a uniformly moving block) counts as active:
     // passive there made a mass released from rest start with the passive k everywhere
@@ -147,8 +146,8 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
     } else {
         // Active where the flow extends (du/dx > 0), passive where it compresses
         // (Wang & Li 2017 after eq. 3).
-        const bool x_active = extends(vel(in.h[im], in.hu[im]), vel(in.h[ip], in.hu[ip]));
-        const bool y_active = extends(vel(in.h_s[i], in.hv_s[i]), vel(in.h_n[i], in.hv_n[i]));
+        const bool x_active = extends(vel(in.h[im], in.u[im]), vel(in.h[ip], in.u[ip]));
+        const bool y_active = extends(vel(in.h_s[i], in.v_s[i]), vel(in.h_n[i], in.v_n[i]));
         const EarthPressureCoefficients& k = p.k;
         const double kx = x_active ? k.kx_active : k.kx_passive;
         const double ky =
@@ -164,7 +163,7 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
     // along-surface dry-front celerity 2 sqrt(k g_n h_n) is frame-independent
     // (docs/numerics.md, step 8). Dry and thin cells bound nothing.
     const bool wet = (hh >= hmin) & (hh > 0.0);
-    const double u = in.hu[i] / hh, v = in.hv[i] / hh;
+    const double u = in.u[i], v = in.v[i];  // hu / hh, hv / hh
     const double ax = 2.0 * std::sqrt(cx * hh), ay = 2.0 * std::sqrt(cy * hh);
     double speed2 = u * u + v * v;
     if constexpr (Metric) {
@@ -211,6 +210,26 @@ void pressure_row(const PressureRowInput& in, const PressureRowOutput& out,
         pressure_row_clone<false, true>(in, out, p, i0, i1, lo, hi);
     else
         pressure_row_clone<false, false>(in, out, p, i0, i1, lo, hi);
+}
+
+// ---------------------------------------------------------------- velocity quotients
+
+namespace {
+AVALANCHE_SIMD_CLONES void state_velocity_clone(const double* __restrict h,
+                                                const double* __restrict hu,
+                                                const double* __restrict hv, double* __restrict u,
+                                                double* __restrict v, int i0, int i1) {
+#pragma omp simd
+    for (int i = i0; i < i1; ++i) {
+        u[i] = hu[i] / h[i];
+        v[i] = hv[i] / h[i];
+    }
+}
+}  // namespace
+
+void state_velocity_row(const double* h, const double* hu, const double* hv, double* u, double* v,
+                        int i0, int i1) noexcept {
+    state_velocity_clone(h, hu, hv, u, v, i0, i1);
 }
 
 }  // namespace avalanche

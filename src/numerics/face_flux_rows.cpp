@@ -16,14 +16,17 @@ struct FaceFlux {
     double h, qn, qt;
 };
 
-AVALANCHE_INLINE FaceFlux hllc_lane(double h_l, double qn_l, double qt_l, double h_r, double qn_r,
-                                    double qt_r, double c_l, double c_r, double h_dry) {
-    // Non-short-circuit logic and divisions evaluated for every lane (a dry lane's
-    // quotient is discarded): conditional arithmetic would keep the loop scalar.
+// The side velocities come in as the quotients q / h of every cell (ul_any = qn_l / h_l,
+// ...), computed by the caller once per cell or here per face; a dry side's quotient
+// is discarded.
+AVALANCHE_INLINE FaceFlux hllc_lane(double h_l, double ul_any, double vl_any, double h_r,
+                                    double ur_any, double vr_any, double c_l, double c_r,
+                                    double h_dry) {
+    // Non-short-circuit logic and divisions evaluated for every lane: conditional
+    // arithmetic would keep the loop scalar.
     const bool wet_l = (h_l >= h_dry) & (h_l > 0.0);
     const bool wet_r = (h_r >= h_dry) & (h_r > 0.0);
     const double hl = wet_l ? h_l : 0.0, hr = wet_r ? h_r : 0.0;
-    const double ul_any = qn_l / h_l, vl_any = qt_l / h_l, ur_any = qn_r / h_r, vr_any = qt_r / h_r;
     const double ul = wet_l ? ul_any : 0.0, vl = wet_l ? vl_any : 0.0;
     const double ur = wet_r ? ur_any : 0.0, vr = wet_r ? vr_any : 0.0;
     const double al = std::sqrt(c_l * hl), ar = std::sqrt(c_r * hr);
@@ -146,20 +149,36 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double qt_ll, doub
             waf_component(f0.qt, f1t, f2t, f3.qt, w)};
 }
 
+// Velocities: the side quotients come from the caller's per-cell arrays in.un, in.ut.
+template <bool Velocities>
 AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                double h_dry) {
     const std::ptrdiff_t off = in.off;
     const double* __restrict h = in.h;
     const double* __restrict qn = in.qn;
     const double* __restrict qt = in.qt;
+    const double* __restrict un = in.un;
+    const double* __restrict ut = in.ut;
     const double* __restrict c = in.c;
     double* __restrict oh = out.h;
     double* __restrict oqn = out.qn;
     double* __restrict oqt = out.qt;
 #pragma omp simd
     for (int i = 0; i < n; ++i) {
-        const FaceFlux f = hllc_lane(h[i - off], qn[i - off], qt[i - off], h[i], qn[i], qt[i],
-                                     c[i - off], c[i], h_dry);
+        const double hl = h[i - off], hr = h[i];
+        double ul, vl, ur, vr;
+        if constexpr (Velocities) {
+            ul = un[i - off];
+            vl = ut[i - off];
+            ur = un[i];
+            vr = ut[i];
+        } else {
+            ul = qn[i - off] / hl;
+            vl = qt[i - off] / hl;
+            ur = qn[i] / hr;
+            vr = qt[i] / hr;
+        }
+        const FaceFlux f = hllc_lane(hl, ul, vl, hr, ur, vr, c[i - off], c[i], h_dry);
         oh[i] = f.h;
         oqn[i] = f.qn;
         oqt[i] = f.qt;
@@ -203,8 +222,8 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
                                        c[i - off], c[i], h_dry, dt_over_dx);
         if constexpr (Fronts) {
             const bool front = (hll < h_dry) | (hl < h_dry) | (hr < h_dry) | (hrr < h_dry);
-            const FaceFlux g =
-                hllc_lane(hl, qn[i - off], qt[i - off], hr, qn[i], qt[i], c[i - off], c[i], h_dry);
+            const FaceFlux g = hllc_lane(hl, qn[i - off] / hl, qt[i - off] / hl, hr, qn[i] / hr,
+                                         qt[i] / hr, c[i - off], c[i], h_dry);
             oh[i] = front ? g.h : w.h;
             oqn[i] = front ? g.qn : w.qn;
             oqt[i] = front ? g.qt : w.qt;
@@ -246,7 +265,10 @@ AVALANCHE_SIMD_CLONES void waf_row_minmod(const FaceRowInput& in, const FaceRowO
 }
 AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                         double h_dry) {
-    hllc_row(in, out, n, h_dry);
+    if (in.un != nullptr)
+        hllc_row<true>(in, out, n, h_dry);
+    else
+        hllc_row<false>(in, out, n, h_dry);
 }
 
 AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRowOutput& flux,

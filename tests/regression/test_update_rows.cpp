@@ -238,13 +238,19 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
         }
         // Column i of the row is element i + ng.
         const auto col0 = [&](Rows& f, int row) { return f.v.data() + row * w + ng; };
+        // The velocity quotients hu / h, hv / h of every cell, as the stepper passes them.
+        Rows qu(w), qv(w);
+        for (int k = 0; k < 3 * w; ++k) {
+            qu.v[k] = hu.v[k] / h.v[k];
+            qv.v[k] = hv.v[k] / h.v[k];
+        }
         const PressureRowInput in{col0(h, 1),
-                                  col0(hu, 1),
-                                  col0(hv, 1),
+                                  col0(qu, 1),
+                                  col0(qv, 1),
                                   col0(h, 0),
-                                  col0(hv, 0),
+                                  col0(qv, 0),
                                   col0(h, 2),
-                                  col0(hv, 2),
+                                  col0(qv, 2),
                                   col0(px, 1),
                                   col0(py, 1),
                                   col0(gn, 1),

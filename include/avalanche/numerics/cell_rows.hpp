@@ -42,11 +42,13 @@ double cfl_rate_row(const double* h, const double* hu, const double* hv, const d
                     const double* py, double kx, double ky, double dx, double dy, double h_min,
                     int i0, int i1) noexcept;
 
-// Rows the pressure stage reads: the state's row r and its rows below (s) and above
-// (n), the terrain's row r; sx, sy null in bed-fitted frames.
+// Rows the pressure stage reads: the state's depth and velocity quotients of row r
+// (u = hu / h, v = hv / h of every cell, as state_velocity_row computes them), the
+// depth and v of the rows below (s) and above (n), the terrain's row r; sx, sy null
+// in bed-fitted frames.
 struct PressureRowInput {
-    const double *h, *hu, *hv;
-    const double *h_s, *hv_s, *h_n, *hv_n;
+    const double *h, *u, *v;
+    const double *h_s, *v_s, *h_n, *v_n;
     const double *px, *py, *gn, *nt, *sx, *sy;
 };
 
@@ -69,5 +71,12 @@ struct PressureRowParams {
 // address column 0 like the inputs.
 void pressure_row(const PressureRowInput& in, const PressureRowOutput& out,
                   const PressureRowParams& p, int i0, int i1, int lo, int hi) noexcept;
+
+// The velocity quotients u = hu / h and v = hv / h of cells i0 .. i1 - 1 of a row,
+// for every cell (a dry cell's are inf or NaN; the kernels mask them): computed once
+// per cell for the pressure stage and the first-order fluxes, the same quotients
+// those computed per face.
+void state_velocity_row(const double* h, const double* hu, const double* hv, double* u, double* v,
+                        int i0, int i1) noexcept;
 
 }  // namespace avalanche

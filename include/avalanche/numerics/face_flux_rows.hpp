@@ -29,6 +29,10 @@ struct FaceRowInput {
     const double* qt;  // momentum along the faces
     const double* c;   // pressure coefficient k g_z per cell
     std::ptrdiff_t off;
+    // Optional (first-order flux only): the quotients qn / h and qt / h per cell,
+    // computed once per cell by the caller (bitwise the kernel's own divisions).
+    const double* un = nullptr;
+    const double* ut = nullptr;
 };
 
 struct FaceRowOutput {
@@ -46,9 +50,9 @@ void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, doub
 void waf_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry,
                   double dt_over_dx, Limiter limiter) noexcept;
 
-// The transverse predictor's half step on one row of cells (Wang & Li 2017 eqs. 6-8): out(m) = q(m) - ratio (F(m + off) - F(m)) for n cells,
-// where F(m) is the flux of the face before cell m; a cell left
-// with h <= 0 is set empty (predicted states only feed fluxes).
+// The transverse predictor's half step on one row of cells (Wang & Li 2017 eqs. 6-8): out(m) = q(m)
+// - ratio (F(m + off) - F(m)) for n cells, where F(m) is the flux of the face before cell m; a cell
+// left with h <= 0 is set empty (predicted states only feed fluxes).
 void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio,
                    const FaceRowOutput& out, int n) noexcept;
 

@@ -69,12 +69,13 @@ class Stepper {
     // Scratch of one strip of rows of the advection (advection.cpp): every array has
     // the grid's row stride and holds the rows [base, base + rows) of one stage field.
     // A thread works through consecutive strips, and the rows a strip shares with the
-    // next (three below its end, three above) are moved down and kept, so every stage
+    // next (one below its end, three above) are moved down and kept, so every stage
     // row is computed once per thread.
     struct StripBuffers {
         std::ptrdiff_t stride = 0;
         int ng = 0, base = 0, rows = 0;
-        std::vector<double> cx, cy;                            // k_x p_x and k_y p_y per cell
+        std::vector<double> su, sv;  // the state's velocity quotients hu / h, hv / h
+        std::vector<double> cx, cy;  // k_x p_x and k_y p_y per cell
         std::vector<double> u_lo, u_hi, v_lo, v_hi, speed_hi;  // invariant bounds (u -/+ 2a_x, ...)
         std::vector<double> yfo_h, yfo_qn, yfo_qt;     // first-order y-faces of the y-predictor
         std::vector<double> pred_h, pred_hu, pred_hv;  // state advanced by the x-predictor
@@ -85,7 +86,7 @@ class Stepper {
         // Rows computed so far of each stage (end, exclusive), valid while the next
         // strip starts at carried_for.
         int carried_for = 0;
-        int p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
+        int vel_end = 0, p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
         void allocate(std::ptrdiff_t row_stride, int row_capacity);
         std::vector<std::vector<double>*> strip_arrays();
         // Moves rows [first_row + by, rows) down by `by` rows, columns [i0, i1).
@@ -119,7 +120,7 @@ class Stepper {
     ActiveBox wet_box_;                 // bounding box of cells with h > 0
     State next_;                        // the state updated by the advection, box only
     std::vector<StripBuffers> strips_;  // one per thread
-    // Rows per strip: the stage buffers of a strip (24 arrays of kStripRows + 6 rows)
+    // Rows per strip: the stage buffers of a strip (22 arrays of kStripRows + 8 rows)
     // stay in a core's cache for grids up to a few thousand cells wide.
     static constexpr int kStripRows = 16;
     double k_max_;          // largest earth-pressure coefficient
