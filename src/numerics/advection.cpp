@@ -44,13 +44,14 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity
     v_lo.assign(n, kNoBound);
     u_hi.assign(n, -kNoBound);
     v_hi.assign(n, -kNoBound);
-    for (auto* a : {&row_h, &row_hu, &row_hv}) a->assign(static_cast<std::size_t>(stride), 0.0);
+    for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v})
+        a->assign(static_cast<std::size_t>(stride), 0.0);
 }
 
 std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
     return {&su,       &sv,    &cx,     &cy,     &u_lo,   &u_hi,    &v_lo,    &v_hi,
-            &speed_hi, &yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &fx_h,
-            &fx_hu,    &fx_hv, &fy_h,   &fy_hu,  &fy_hv,  &factor};
+            &speed_hi, &yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &pred_u,
+            &pred_v,   &fx_h,  &fx_hu,  &fx_hv,  &fy_h,   &fy_hu,   &fy_hv,   &factor};
 }
 
 void Stepper::StripBuffers::shift_rows(int by, int first_row, int i0, int i1) {
@@ -213,13 +214,20 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
         w.yfo_end = std::max(w.yfo_end, x1 + 1);
         for (int r = std::max(x0, w.xf_end); r < x1; ++r) {
             // The y-predictor of row r, used at once by the x-faces of row r.
+            // Its velocity quotients (normal hv / h, tangential hu / h) are kept for the
+            // x-faces, which read every cell twice.
+            FaceRowOutput predicted = face_out(w.row_h, w.row_hv, w.row_hu, pc0 + ng);
+            predicted.un = w.row_v.data() + pc0 + ng;
+            predicted.ut = w.row_u.data() + pc0 + ng;
             predictor_row(face_in(sh, shv, shu, full(pc0, r), w.cy, w.k(pc0, r), st),
-                          face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), ratio,
-                          face_out(w.row_h, w.row_hv, w.row_hu, pc0 + ng), n);
-            const std::ptrdiff_t k = w.k(b.i0, r);
-            waf_face_row(FaceRowInput{w.row_h.data() + b.i0 + ng, w.row_hu.data() + b.i0 + ng,
-                                      w.row_hv.data() + b.i0 + ng, w.cx.data() + k, 1},
-                         face_out(w.fx_h, w.fx_hu, w.fx_hv, k), b.i1 + 1 - b.i0, hd, dt_dx, lim);
+                          face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), ratio, predicted, n);
+            const std::ptrdiff_t k = w.k(b.i0, r), c0 = b.i0 + ng;
+            FaceRowInput in{w.row_h.data() + c0, w.row_hu.data() + c0, w.row_hv.data() + c0,
+                            w.cx.data() + k, 1};
+            in.un = w.row_u.data() + c0;
+            in.ut = w.row_v.data() + c0;
+            waf_face_row(in, face_out(w.fx_h, w.fx_hu, w.fx_hv, k), b.i1 + 1 - b.i0, hd, dt_dx,
+                         lim);
             fix_x_faces(r);
         }
     } else {
@@ -244,15 +252,19 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
                 with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), w.su,
                                 w.sv, w.k(b.i0, r)),
                 first_order, n + 1, hd);
+            FaceRowOutput predicted = face_out(w.pred_h, w.pred_hu, w.pred_hv, w.k(b.i0, r));
+            predicted.un = w.pred_u.data() + w.k(b.i0, r);
+            predicted.ut = w.pred_v.data() + w.k(b.i0, r);
             predictor_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), first_order,
-                          ratio, face_out(w.pred_h, w.pred_hu, w.pred_hv, w.k(b.i0, r)), n);
+                          ratio, predicted, n);
         }
         w.xp_end = std::max(w.xp_end, xp1);
         for (int r = std::max(y0, w.yf_end); r < y1; ++r) {
             const std::ptrdiff_t k = w.k(b.i0, r);
-            waf_face_row(
-                face_in(w.pred_h.data(), w.pred_hv.data(), w.pred_hu.data(), k, w.cy, k, st),
-                face_out(w.fy_h, w.fy_hv, w.fy_hu, k), n, hd, dt_dy, lim);
+            waf_face_row(with_velocities(face_in(w.pred_h.data(), w.pred_hv.data(),
+                                                 w.pred_hu.data(), k, w.cy, k, st),
+                                         w.pred_v, w.pred_u, k),
+                         face_out(w.fy_h, w.fy_hv, w.fy_hu, k), n, hd, dt_dy, lim);
             fix_y_faces(r);
         }
     } else {

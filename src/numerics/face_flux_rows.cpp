@@ -94,14 +94,14 @@ AVALANCHE_INLINE double waf_component(double f0, double f1, double f2, double f3
 // Stepper::face_fluxes for one face with all four stencil cells at least h_dry
 // thick (so both sides wet, h_dry > 0): hllc_fan's wet/wet fan, the wave-strength
 // and shear limiter ratios, waf_flux.
+// The cells' velocities come in as the quotients q / h (ul = qn_l / h_l, vl = qt_l / h_l,
+// v_ll = qt_ll / h_ll, ...), computed once per cell or per face by the caller.
 template <Limiter L>
-AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double qt_ll, double h_l, double qn_l,
-                                   double qt_l, double h_r, double qn_r, double qt_r, double h_rr,
-                                   double qn_rr, double qt_rr, double c_l, double c_r, double h_dry,
-                                   double dt_over_dx) {
-    constexpr double kFlat = 1e-12;  // Stepper::face_fluxes
-    const double ul = qn_l / h_l, vl = qt_l / h_l;
-    const double ur = qn_r / h_r, vr = qt_r / h_r;
+AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, double h_l, double qn_l,
+                                   double ul, double vl, double h_r, double qn_r, double ur,
+                                   double vr, double h_rr, double qn_rr, double v_rr, double c_l,
+                                   double c_r, double h_dry, double dt_over_dx) {
+    constexpr double kFlat = 1e-12;  // waf_face_flux (waf_face.hpp)
     const double al = std::sqrt(c_l * h_l), ar = std::sqrt(c_r * h_r);
     const double s_l = std::min(ul - al, ur - ar);
     const double s_r = std::max(ul + al, ur + ar);
@@ -132,9 +132,8 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double qt_ll, doub
     const double up_3 = (from_left_3 ? dq_lup - up_r * dh_lup : dq_rup - up_r * dh_rup) / two_a;
     // Shear wave: the jump of the transverse velocity.
     const bool from_left_2 = s_star >= 0.0;
-    // The upwind cell's transverse velocity (of LL or RR), one division.
-    const double h_up = from_left_2 ? h_ll : h_rr, qt_up = from_left_2 ? qt_ll : qt_rr;
-    const double v_up_any = qt_up / h_up;
+    // The upwind cell's transverse velocity (of LL or RR).
+    const double h_up = from_left_2 ? h_ll : h_rr, v_up_any = from_left_2 ? v_ll : v_rr;
     const double v_up = (h_up >= h_dry) & (h_up > 0.0) ? v_up_any : 0.0;
     const double dv_loc = vr - vl;
     const double dv_up = from_left_2 ? vl - v_up : v_up - vr;
@@ -202,13 +201,16 @@ AVALANCHE_INLINE bool row_has_front(const FaceRowInput& in, int n, double h_dry)
     return !(thinnest >= h_dry);
 }
 
-template <Limiter L, bool Fronts>
+// Velocities: the quotients q / h of the cells come from in.un, in.ut.
+template <Limiter L, bool Fronts, bool Velocities>
 AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry,
                               double dt_over_dx) {
     const std::ptrdiff_t off = in.off;
     const double* __restrict h = in.h;
     const double* __restrict qn = in.qn;
     const double* __restrict qt = in.qt;
+    const double* __restrict un = in.un;
+    const double* __restrict ut = in.ut;
     const double* __restrict c = in.c;
     double* __restrict oh = out.h;
     double* __restrict oqn = out.qn;
@@ -216,14 +218,29 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
 #pragma omp simd
     for (int i = 0; i < n; ++i) {
         const double hll = h[i - 2 * off], hl = h[i - off], hr = h[i], hrr = h[i + off];
-        // At a wet/dry front (a stencil cell thinner than h_dry) the first-order flux.
-        const FaceFlux w = waf_lane<L>(hll, qn[i - 2 * off], qt[i - 2 * off], hl, qn[i - off],
-                                       qt[i - off], hr, qn[i], qt[i], hrr, qn[i + off], qt[i + off],
-                                       c[i - off], c[i], h_dry, dt_over_dx);
+        double ul, vl, ur, vr, v_ll, v_rr;
+        if constexpr (Velocities) {
+            ul = un[i - off];
+            vl = ut[i - off];
+            ur = un[i];
+            vr = ut[i];
+            v_ll = ut[i - 2 * off];
+            v_rr = ut[i + off];
+        } else {
+            ul = qn[i - off] / hl;
+            vl = qt[i - off] / hl;
+            ur = qn[i] / hr;
+            vr = qt[i] / hr;
+            v_ll = qt[i - 2 * off] / hll;
+            v_rr = qt[i + off] / hrr;
+        }
+        const FaceFlux w =
+            waf_lane<L>(hll, qn[i - 2 * off], v_ll, hl, qn[i - off], ul, vl, hr, qn[i], ur, vr, hrr,
+                        qn[i + off], v_rr, c[i - off], c[i], h_dry, dt_over_dx);
         if constexpr (Fronts) {
+            // At a wet/dry front (a stencil cell thinner than h_dry) the first-order flux.
             const bool front = (hll < h_dry) | (hl < h_dry) | (hr < h_dry) | (hrr < h_dry);
-            const FaceFlux g = hllc_lane(hl, qn[i - off] / hl, qt[i - off] / hl, hr, qn[i] / hr,
-                                         qt[i] / hr, c[i - off], c[i], h_dry);
+            const FaceFlux g = hllc_lane(hl, ul, vl, hr, ur, vr, c[i - off], c[i], h_dry);
             oh[i] = front ? g.h : w.h;
             oqn[i] = front ? g.qn : w.qn;
             oqt[i] = front ? g.qt : w.qt;
@@ -235,33 +252,35 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
     }
 }
 
+template <Limiter L>
+AVALANCHE_INLINE void waf_row_dispatch(const FaceRowInput& in, const FaceRowOutput& out, int n,
+                                       double h_dry, double dt_over_dx) {
+    const bool fronts = row_has_front(in, n, h_dry), velocities = in.un != nullptr;
+    if (fronts && velocities)
+        waf_row<L, true, true>(in, out, n, h_dry, dt_over_dx);
+    else if (fronts)
+        waf_row<L, true, false>(in, out, n, h_dry, dt_over_dx);
+    else if (velocities)
+        waf_row<L, false, true>(in, out, n, h_dry, dt_over_dx);
+    else
+        waf_row<L, false, false>(in, out, n, h_dry, dt_over_dx);
+}
+
 AVALANCHE_SIMD_CLONES void waf_row_superbee(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                             double h_dry, double dt_over_dx) {
-    if (row_has_front(in, n, h_dry))
-        waf_row<Limiter::superbee, true>(in, out, n, h_dry, dt_over_dx);
-    else
-        waf_row<Limiter::superbee, false>(in, out, n, h_dry, dt_over_dx);
+    waf_row_dispatch<Limiter::superbee>(in, out, n, h_dry, dt_over_dx);
 }
 AVALANCHE_SIMD_CLONES void waf_row_van_leer(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                             double h_dry, double dt_over_dx) {
-    if (row_has_front(in, n, h_dry))
-        waf_row<Limiter::van_leer, true>(in, out, n, h_dry, dt_over_dx);
-    else
-        waf_row<Limiter::van_leer, false>(in, out, n, h_dry, dt_over_dx);
+    waf_row_dispatch<Limiter::van_leer>(in, out, n, h_dry, dt_over_dx);
 }
 AVALANCHE_SIMD_CLONES void waf_row_van_albada(const FaceRowInput& in, const FaceRowOutput& out,
                                               int n, double h_dry, double dt_over_dx) {
-    if (row_has_front(in, n, h_dry))
-        waf_row<Limiter::van_albada, true>(in, out, n, h_dry, dt_over_dx);
-    else
-        waf_row<Limiter::van_albada, false>(in, out, n, h_dry, dt_over_dx);
+    waf_row_dispatch<Limiter::van_albada>(in, out, n, h_dry, dt_over_dx);
 }
 AVALANCHE_SIMD_CLONES void waf_row_minmod(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                           double h_dry, double dt_over_dx) {
-    if (row_has_front(in, n, h_dry))
-        waf_row<Limiter::minmod, true>(in, out, n, h_dry, dt_over_dx);
-    else
-        waf_row<Limiter::minmod, false>(in, out, n, h_dry, dt_over_dx);
+    waf_row_dispatch<Limiter::minmod>(in, out, n, h_dry, dt_over_dx);
 }
 AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                         double h_dry) {
@@ -271,8 +290,11 @@ AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOut
         hllc_row<false>(in, out, n, h_dry);
 }
 
+template <bool Velocities>
 AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRowOutput& flux,
                                              double ratio, const FaceRowOutput& out, int n) {
+    double* __restrict pun = out.un;
+    double* __restrict put = out.ut;
     const std::ptrdiff_t off = q.off;
     const double* __restrict h = q.h;
     const double* __restrict qn = q.qn;
@@ -289,9 +311,14 @@ AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRo
         const double hn = qn[i] - ratio * (fqn[i + off] - fqn[i]);
         const double ht = qt[i] - ratio * (fqt[i + off] - fqt[i]);
         const bool empty = hh <= 0.0;
-        ph[i] = empty ? 0.0 : hh;
-        pqn[i] = empty ? 0.0 : hn;
-        pqt[i] = empty ? 0.0 : ht;
+        const double h_p = empty ? 0.0 : hh, qn_p = empty ? 0.0 : hn, qt_p = empty ? 0.0 : ht;
+        ph[i] = h_p;
+        pqn[i] = qn_p;
+        pqt[i] = qt_p;
+        if constexpr (Velocities) {  // the quotients of the stored values
+            pun[i] = qn_p / h_p;
+            put[i] = qt_p / h_p;
+        }
     }
 }
 
@@ -299,7 +326,10 @@ AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRo
 
 void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio,
                    const FaceRowOutput& out, int n) noexcept {
-    predictor_row_any(q, flux, ratio, out, n);
+    if (out.un != nullptr)
+        predictor_row_any<true>(q, flux, ratio, out, n);
+    else
+        predictor_row_any<false>(q, flux, ratio, out, n);
 }
 
 void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry) noexcept {

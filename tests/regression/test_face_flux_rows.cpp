@@ -7,6 +7,7 @@
 // supercritical flow in both directions, so every selection in the kernels is taken.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -121,9 +122,20 @@ TEST(FaceFluxRows, WafRowIsBitwiseTheScalarWafFaceFluxForEveryLimiter) {
             const double dt_dx = 0.002 + 0.001 * trial;  // Courant numbers from small to above 1
             const Block b = random_block(rng, 37 + trial % 9, 7, h_dry,
                                          trial % 4 == 3);  // every fourth block: no fronts
+            std::vector<double> un(b.h.size()), ut(b.h.size());
+            for (std::size_t k = 0; k < b.h.size(); ++k) {
+                un[k] = b.qn[k] / b.h[k];
+                ut[k] = b.qt[k] / b.h[k];
+            }
             faces += compare(
                 b,
-                [&](const FaceRowInput& in, const FaceRowOutput& out, int n) {
+                [&](FaceRowInput in, const FaceRowOutput& out, int n) {
+                    if (trial % 2 ==
+                        1) {  // the cells' velocity quotients given, as the stepper does
+                        const std::ptrdiff_t k0 = in.h - b.h.data();
+                        in.un = un.data() + k0;
+                        in.ut = ut.data() + k0;
+                    }
                     waf_face_row(in, out, n, h_dry, dt_dx, lim);
                 },
                 [&](const Conserved& qll, const Conserved& ql, const Conserved& qr,
@@ -150,14 +162,17 @@ TEST(FaceFluxRows, PredictorRowIsTheScalarHalfStep) {
         const Block f =
             random_block(rng, 41 + trial, 5, h_dry);  // any numbers serve as face fluxes
         for (const std::ptrdiff_t off : {std::ptrdiff_t{1}, static_cast<std::ptrdiff_t>(q.width)}) {
-            std::vector<double> ph(q.h.size()), pq(q.h.size()), pt(q.h.size());
+            std::vector<double> ph(q.h.size()), pq(q.h.size()), pt(q.h.size()), pu(q.h.size()),
+                pv(q.h.size());
             const std::ptrdiff_t k0 = 2 * q.width + 1;
             const int n = 3 * q.width;
             predictor_row(
                 {q.h.data() + k0, q.qn.data() + k0, q.qt.data() + k0, q.c.data() + k0, off},
                 {const_cast<double*>(f.h.data()) + k0, const_cast<double*>(f.qn.data()) + k0,
                  const_cast<double*>(f.qt.data()) + k0},
-                ratio, {ph.data() + k0, pq.data() + k0, pt.data() + k0}, n);
+                ratio,
+                {ph.data() + k0, pq.data() + k0, pt.data() + k0, pu.data() + k0, pv.data() + k0},
+                n);
             for (std::ptrdiff_t k = k0; k < k0 + n; ++k) {
                 // The loop of Stepper::godunov_predictor before it was vectorised.
                 double h = q.h[k] - ratio * (f.h[k + off] - f.h[k]);
@@ -167,6 +182,11 @@ TEST(FaceFluxRows, PredictorRowIsTheScalarHalfStep) {
                     h = qn = qt = 0.0;
                     ++emptied;
                 }
+                // The velocity quotients of the values written (NaN for an emptied cell).
+                const double un = qn / h, ut = qt / h;
+                ASSERT_TRUE((same_bits(un, pu[k]) && same_bits(ut, pv[k])) ||
+                            (std::isnan(un) && std::isnan(pu[k])))
+                    << "cell " << k;
                 ASSERT_TRUE(same_bits(h, ph[k]) && same_bits(qn, pq[k]) && same_bits(qt, pt[k]))
                     << "cell " << k;
             }

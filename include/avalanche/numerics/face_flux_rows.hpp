@@ -29,8 +29,8 @@ struct FaceRowInput {
     const double* qt;  // momentum along the faces
     const double* c;   // pressure coefficient k g_z per cell
     std::ptrdiff_t off;
-    // Optional (first-order flux only): the quotients qn / h and qt / h per cell,
-    // computed once per cell by the caller (bitwise the kernel's own divisions).
+    // Optional: the quotients qn / h and qt / h per cell, computed once per cell by the
+    // caller (bitwise the kernels' own divisions).
     const double* un = nullptr;
     const double* ut = nullptr;
 };
@@ -39,6 +39,10 @@ struct FaceRowOutput {
     double* h;
     double* qn;
     double* qt;
+    // Optional (predictor_row only): the quotients qn / h and qt / h of the values
+    // written, for waf_face_row's FaceRowInput::un, ut.
+    double* un = nullptr;
+    double* ut = nullptr;
 };
 
 // First-order HLLC flux, bitwise hllc_flux(ql, qr, c_l, c_r, h_dry), of n faces.

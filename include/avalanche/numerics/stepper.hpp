@@ -79,10 +79,11 @@ class Stepper {
         std::vector<double> u_lo, u_hi, v_lo, v_hi, speed_hi;  // invariant bounds (u -/+ 2a_x, ...)
         std::vector<double> yfo_h, yfo_qn, yfo_qt;     // first-order y-faces of the y-predictor
         std::vector<double> pred_h, pred_hu, pred_hv;  // state advanced by the x-predictor
+        std::vector<double> pred_u, pred_v;            // and its velocity quotients
         std::vector<double> fx_h, fx_hu, fx_hv;        // x-face fluxes; face (i, r) left of cell i
         std::vector<double> fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
         std::vector<double> factor;                    // donor factors
-        std::vector<double> row_h, row_hu, row_hv;     // one row: a predictor's scratch
+        std::vector<double> row_h, row_hu, row_hv, row_u, row_v;  // one row: a predictor's scratch
         // Rows computed so far of each stage (end, exclusive), valid while the next
         // strip starts at carried_for.
         int carried_for = 0;
@@ -120,7 +121,7 @@ class Stepper {
     ActiveBox wet_box_;                 // bounding box of cells with h > 0
     State next_;                        // the state updated by the advection, box only
     std::vector<StripBuffers> strips_;  // one per thread
-    // Rows per strip: the stage buffers of a strip (22 arrays of kStripRows + 8 rows)
+    // Rows per strip: the stage buffers of a strip (24 arrays of kStripRows + 8 rows)
     // stay in a core's cache for grids up to a few thousand cells wide.
     static constexpr int kStripRows = 16;
     double k_max_;          // largest earth-pressure coefficient
