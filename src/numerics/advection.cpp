@@ -54,15 +54,34 @@ std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
             &pred_v,   &fx_h,  &fx_hu,  &fx_hv,  &fy_h,   &fy_hu,   &fy_hv,   &factor};
 }
 
-void Stepper::StripBuffers::shift_rows(int by, int first_row, int i0, int i1) {
+void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
+    // The rows the next strip reads and does not compute, relative to its first row
+    // J: the update's 3 x 3 reach (bounds J - 1 .. J + 2 and factors J - 1 .. J, the
+    // faces of row J), the neighbours of the rows it computes (velocities and
+    // pressure coefficients) and the x-predictor rows under its first y-faces.
+    struct Carried {
+        std::vector<double>* a;
+        int first, count;
+    };
+    const Carried first_order[] = {
+        {&su, 1, 3},        {&sv, 1, 3},    {&cx, 1, 2},    {&cy, 1, 2},
+        {&u_lo, -1, 4},     {&u_hi, -1, 4}, {&v_lo, -1, 4}, {&v_hi, -1, 4},
+        {&speed_hi, -1, 4}, {&fx_h, 0, 1},  {&fx_hu, 0, 1}, {&fx_hv, 0, 1},
+        {&fy_h, 0, 2},      {&fy_hu, 0, 2}, {&fy_hv, 0, 2}, {&factor, -1, 2}};
+    const Carried predictors[] = {{&yfo_h, 1, 1},  {&yfo_qn, 1, 1},  {&yfo_qt, 1, 1},
+                                  {&pred_h, 0, 3}, {&pred_hu, 0, 3}, {&pred_hv, 0, 3},
+                                  {&pred_u, 0, 3}, {&pred_v, 0, 3}};
     const std::ptrdiff_t first = i0 + ng, width = i1 - i0;
-    for (auto* a : strip_arrays()) {
-        double* d = a->data();
-        for (int q = first_row; q < rows - by; ++q) {
+    const auto move = [&](const Carried& c) {
+        double* d = c.a->data();
+        for (int q = 4 + c.first; q < 4 + c.first + c.count; ++q) {  // row J + d at position 4 + d
             const std::ptrdiff_t to = static_cast<std::ptrdiff_t>(q) * stride + first;
             std::copy_n(d + to + static_cast<std::ptrdiff_t>(by) * stride, width, d + to);
         }
-    }
+    };
+    for (const Carried& c : first_order) move(c);
+    if (waf)
+        for (const Carried& c : predictors) move(c);
 }
 
 // ---------------------------------------------------------------- stage 1: per cell
@@ -114,7 +133,7 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     if (w.carried_for == J) {
         // The next strip reads none of its stage rows below J - 1 (the update's
         // 3 x 3 reach): the buffers' rows J - 4 .. J - 2 stay unused.
-        w.shift_rows(J - 4 - w.base, 3, pc0, pc1);
+        w.carry_rows(J - 4 - w.base, waf, pc0, pc1);
     } else {
         w.vel_end = w.p_end = w.yfo_end = w.xf_end = w.xp_end = w.yf_end = w.fac_end =
             std::numeric_limits<int>::min();

@@ -90,8 +90,9 @@ class Stepper {
         int vel_end = 0, p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
         void allocate(std::ptrdiff_t row_stride, int row_capacity);
         std::vector<std::vector<double>*> strip_arrays();
-        // Moves rows [first_row + by, rows) down by `by` rows, columns [i0, i1).
-        void shift_rows(int by, int first_row, int i0, int i1);
+        // Moves the rows the next strip needs down by `by` rows (the strip height),
+        // columns [i0, i1); the predictors' rows only for the WAF scheme.
+        void carry_rows(int by, bool waf, int i0, int i1);
         [[nodiscard]] std::ptrdiff_t k(int i, int r) const {
             return static_cast<std::ptrdiff_t>(r - base) * stride + (i + ng);
         }
