@@ -56,27 +56,67 @@ double total_volume(const State& s, const Grid& g) {
     return static_cast<double>(sum * g.cell_area());
 }
 
-void check_state(const State& s, const Grid& g, const ActiveBox& box, double t) {
-    int bad_i = -1, bad_j = -1;
-    const char* what = nullptr;
-    for (int j = box.j0; j < box.j1 && !what; ++j) {
-        const double* h = s.h.row(j);
-        const double* hu = s.hu.row(j);
-        const double* hv = s.hv.row(j);
-        for (int i = box.i0; i < box.i1; ++i) {
-            if (!std::isfinite(h[i]) || !std::isfinite(hu[i]) || !std::isfinite(hv[i])) {
-                what = "non-finite value (NaN or Inf) in the state";
-            } else if (h[i] < 0.0) {
-                what = "negative depth";
-            }
-            if (what) {
-                bad_i = i;
-                bad_j = j;
-                break;
-            }
+namespace {
+
+// Boxes smaller than this are scanned or copied on one thread, for the reason of
+// Stepper::kMinCellsPerThreadedStep (stepper.hpp): waking the team costs more than
+// a pass over a few thousand cells.
+constexpr std::size_t kMinCellsPerThreadedPass = 20000;
+
+struct RowScan {
+    long double kinetic = 0.0L;  // sum of h |u|^2 / 2 over the row (not yet x dA)
+    int first_bad = -1;          // i of the row's first non-finite or negative cell
+    bool moving = false;
+};
+
+RowScan scan_row(const double* h, const double* hu, const double* hv, int i0, int i1) {
+    RowScan r;
+    for (int i = i0; i < i1; ++i) {
+        // isfinite first: a comparison with NaN would raise FE_INVALID.
+        if (!std::isfinite(h[i]) || !std::isfinite(hu[i]) || !std::isfinite(hv[i]) || h[i] < 0.0) {
+            r.first_bad = i;
+            break;
         }
+        if (hu[i] != 0.0 || hv[i] != 0.0) r.moving = true;
+        if (h[i] > 0.0) r.kinetic += 0.5L * (hu[i] * hu[i] + hv[i] * hv[i]) / h[i];
     }
-    if (what) throw NumericalError(what, bad_i, bad_j, g.x_center(bad_i), g.y_center(bad_j), t);
+    return r;
+}
+
+[[noreturn]] void throw_bad_cell(const State& s, const Grid& g, int i, int j, double t) {
+    const bool finite =
+        std::isfinite(s.h(i, j)) && std::isfinite(s.hu(i, j)) && std::isfinite(s.hv(i, j));
+    throw NumericalError(finite ? "negative depth" : "non-finite value (NaN or Inf) in the state",
+                         i, j, g.x_center(i), g.y_center(j), t);
+}
+
+}  // namespace
+
+// One fused pass instead of three serial scans (state check, kinetic energy, rest
+// test): on a large box these were the serial part of every step that limited the
+// scaling to two threads. Each row is scanned on its own and the rows are combined in
+// row order, so the first bad cell is the row-major first and the sum is independent
+// of the thread count. (Before, one long double accumulator ran over all cells; the
+// per-row partial sums can differ from it in the last bits of the long double, which
+// rarely reaches the double returned.)
+StepScan scan_state(const State& s, const Grid& g, const ActiveBox& box, double t) {
+    StepScan out;
+    if (box.empty()) return out;
+    std::vector<RowScan> rows(static_cast<std::size_t>(box.j1 - box.j0));
+    const bool threaded = box.cells() >= kMinCellsPerThreadedPass;
+#pragma omp parallel for schedule(static) if (threaded)
+    for (int j = box.j0; j < box.j1; ++j)
+        rows[static_cast<std::size_t>(j - box.j0)] =
+            scan_row(s.h.row(j), s.hu.row(j), s.hv.row(j), box.i0, box.i1);
+    long double kinetic = 0.0L;
+    for (int j = box.j0; j < box.j1; ++j) {
+        const RowScan& r = rows[static_cast<std::size_t>(j - box.j0)];
+        if (r.first_bad >= 0) throw_bad_cell(s, g, r.first_bad, j, t);
+        kinetic += r.kinetic;
+        if (r.moving) out.at_rest = false;
+    }
+    out.kinetic_energy = static_cast<double>(kinetic * g.cell_area());
+    return out;
 }
 
 double effective_h_min(const NumericsParams& n, const State& initial, const TerrainFields& terrain) {
@@ -99,19 +139,6 @@ Simulation::Simulation(Grid grid, const TerrainFields& terrain, MaterialParams m
     stepper_.reset_active_box(state_);
 }
 
-double Simulation::kinetic_energy() const {
-    const ActiveBox& b = stepper_.active_box();
-    long double sum = 0.0L;
-    for (int j = b.j0; j < b.j1; ++j) {
-        for (int i = b.i0; i < b.i1; ++i) {
-            const double h = state_.h(i, j);
-            if (h <= 0.0) continue;
-            sum += 0.5L * (state_.hu(i, j) * state_.hu(i, j) + state_.hv(i, j) * state_.hv(i, j)) / h;
-        }
-    }
-    return static_cast<double>(sum * grid_.cell_area());
-}
-
 void Simulation::drain_sinks() {
     const ActiveBox& b = stepper_.active_box();
     long double drained = 0.0L;
@@ -123,14 +150,6 @@ void Simulation::drain_sinks() {
         }
     if (drained > 0.0L)
         stepper_.set_outflow_volume(stepper_.outflow_volume() + static_cast<double>(drained * grid_.cell_area()));
-}
-
-bool Simulation::all_at_rest() const {
-    const ActiveBox& b = stepper_.active_box();
-    for (int j = b.j0; j < b.j1; ++j)
-        for (int i = b.i0; i < b.i1; ++i)
-            if (state_.hu(i, j) != 0.0 || state_.hv(i, j) != 0.0) return false;
-    return true;
 }
 
 void Simulation::resume(const LoopState& loop, const std::vector<double>& h, const std::vector<double>& hu,
@@ -162,6 +181,9 @@ void Simulation::remember_last_good() {
     saved_h_.resize(n);
     saved_hu_.resize(n);
     saved_hv_.resize(n);
+    // Every step of a run with a fault handler (the CLI's) copies the box: on a large
+    // box a serial copy would be a serial part of the step.
+#pragma omp parallel for schedule(static) if (n >= kMinCellsPerThreadedPass)
     for (int j = saved_box_.j0; j < saved_box_.j1; ++j) {
         const std::size_t o = static_cast<std::size_t>(j - saved_box_.j0) * w;
         std::copy_n(state_.h.row(j) + saved_box_.i0, w, saved_h_.begin() + static_cast<std::ptrdiff_t>(o));
@@ -248,8 +270,9 @@ RunStatistics Simulation::run() {
             const ActiveBox& b = stepper_.active_box();
             state_.h((b.i0 + b.i1) / 2, (b.j0 + b.j1) / 2) = std::numeric_limits<double>::quiet_NaN();
         }
+        StepScan scan;
         try {
-            check_state(state_, grid_, stepper_.active_box(), t);
+            scan = scan_state(state_, grid_, stepper_.active_box(), t);
         } catch (const NumericalError& e) {
             if (on_fault_) report_fault(before, e.what());
             throw;
@@ -263,9 +286,10 @@ RunStatistics Simulation::run() {
         }
 
         // End-of-run rule.
-        const double ke = kinetic_energy();
+        // (The observers above only read the state: the scan still describes it.)
+        const double ke = scan.kinetic_energy;
         L.ke_max = std::max(L.ke_max, ke);
-        if (all_at_rest()) {
+        if (scan.at_rest) {
             reason = EndReason::stopped_at_rest;
             break;
         }

@@ -44,8 +44,18 @@ struct RunStatistics {
 // is judged on the solver's round-off, not the diagnostic's.
 double total_volume(const State& s, const Grid& g);
 
-// Throws NumericalError naming the first non-finite or negative cell in the box.
-void check_state(const State& s, const Grid& g, const ActiveBox& box, double t);
+// What the time loop needs from the state after each step.
+struct StepScan {
+    double kinetic_energy = 0.0;  // J/kg x m^3: sum of h |u|^2 / 2 dA over the box
+    bool at_rest = true;          // every hu and hv in the box exactly zero
+};
+
+// One pass over the box after a step: throws NumericalError naming the first
+// non-finite or negative cell in row-major order, else returns the kinetic energy and
+// whether everything is at rest. Large boxes are scanned by all OpenMP threads; the
+// result does not depend on their number (kinetic energy: one long double sum per
+// row, rows added in order).
+StepScan scan_state(const State& s, const Grid& g, const ActiveBox& box, double t);
 
 // Everything the time loop carries from one step to the next, besides the state and
 // the observers: a run restored from it at a step boundary takes the same steps, bit
@@ -123,8 +133,6 @@ public:
     [[nodiscard]] const Grid& grid() const { return grid_; }
 
 private:
-    [[nodiscard]] double kinetic_energy() const;
-    [[nodiscard]] bool all_at_rest() const;
     void drain_sinks();
     void remember_last_good();
     [[noreturn]] void report_fault(const LoopState& last_good, const std::string& what);
