@@ -96,9 +96,12 @@ RowScan scan_row(const double* h, const double* hu, const double* hv, int i0, in
 // test): on a large box these were the serial part of every step that limited the
 // scaling to two threads. Each row is scanned on its own and the rows are combined in
 // row order, so the first bad cell is the row-major first and the sum is independent
-// of the thread count. (Before, one long double accumulator ran over all cells; the
-// per-row partial sums can differ from it in the last bits of the long double, which
-// rarely reaches the double returned.)
+// of the thread count. (Before, one long double accumulator ran over all cells. The
+// per-row sums differ from it in the last bits: in ~1 % of the steps of the chute and
+// valley benchmarks by one ulp of the double, on a wet 1000 x 1000 plane by ~1e-14
+// relative in every step, the round-off of the single accumulator against a binary128
+// sum; the per-row sum's error there is ~1e-17. Step counts and end reasons were
+// unchanged.)
 StepScan scan_state(const State& s, const Grid& g, const ActiveBox& box, double t) {
     StepScan out;
     if (box.empty()) return out;
