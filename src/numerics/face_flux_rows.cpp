@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "avalanche/numerics/riemann_hllc.hpp"
 #include "simd_clones.hpp"
@@ -184,21 +185,14 @@ AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out,
     }
 }
 
-// Fronts: whether a stencil cell of the row is thinner than h_dry. A row without one
-// (most rows of a flow) skips the first-order flux the selection would discard.
-AVALANCHE_INLINE bool row_has_front(const FaceRowInput& in, int n, double h_dry) {
+// The thinnest of the four stencil cells of each face: a face with one below h_dry is
+// at a wet/dry front.
+AVALANCHE_INLINE void stencil_thinnest(const FaceRowInput& in, int n, double* __restrict thin) {
     const std::ptrdiff_t off = in.off;
-    double thinnest = h_dry;  // min over the stencil cells and h_dry
-    const auto scan = [&thinnest](const double* __restrict h, int first, int last) {
-#pragma omp simd reduction(min : thinnest)
-        for (int i = first; i < last; ++i) thinnest = std::min(thinnest, h[i]);
-    };
-    if (off == 1) {
-        scan(in.h, -2, n + 1);  // face i reads cells i - 2 .. i + 1 of the row
-    } else {
-        for (std::ptrdiff_t r = -2; r <= 1; ++r) scan(in.h + r * off, 0, n);  // four rows
-    }
-    return !(thinnest >= h_dry);
+    const double* __restrict h = in.h;
+#pragma omp simd
+    for (int i = 0; i < n; ++i)
+        thin[i] = std::min(std::min(h[i - 2 * off], h[i - off]), std::min(h[i], h[i + off]));
 }
 
 // Velocities: the quotients q / h of the cells come from in.un, in.ut.
@@ -252,18 +246,40 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
     }
 }
 
+// A row is cut into runs of faces with and without a front in their stencil: the runs
+// without one (the interior of a flow) skip the first-order flux their selection would
+// discard, the others compute both and select per face.
 template <Limiter L>
 AVALANCHE_INLINE void waf_row_dispatch(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                        double h_dry, double dt_over_dx) {
-    const bool fronts = row_has_front(in, n, h_dry), velocities = in.un != nullptr;
-    if (fronts && velocities)
-        waf_row<L, true, true>(in, out, n, h_dry, dt_over_dx);
-    else if (fronts)
-        waf_row<L, true, false>(in, out, n, h_dry, dt_over_dx);
-    else if (velocities)
-        waf_row<L, false, true>(in, out, n, h_dry, dt_over_dx);
-    else
-        waf_row<L, false, false>(in, out, n, h_dry, dt_over_dx);
+    thread_local std::vector<double> thin;
+    if (thin.size() < static_cast<std::size_t>(n)) thin.resize(static_cast<std::size_t>(n));
+    stencil_thinnest(in, n, thin.data());
+    const bool velocities = in.un != nullptr;
+    for (int a = 0; a < n;) {
+        const bool front = !(thin[static_cast<std::size_t>(a)] >= h_dry);
+        int b = a + 1;
+        while (b < n && !(thin[static_cast<std::size_t>(b)] >= h_dry) == front) ++b;
+        FaceRowInput sub = in;
+        sub.h += a;
+        sub.qn += a;
+        sub.qt += a;
+        sub.c += a;
+        if (velocities) {
+            sub.un += a;
+            sub.ut += a;
+        }
+        const FaceRowOutput to{out.h + a, out.qn + a, out.qt + a};
+        if (front && velocities)
+            waf_row<L, true, true>(sub, to, b - a, h_dry, dt_over_dx);
+        else if (front)
+            waf_row<L, true, false>(sub, to, b - a, h_dry, dt_over_dx);
+        else if (velocities)
+            waf_row<L, false, true>(sub, to, b - a, h_dry, dt_over_dx);
+        else
+            waf_row<L, false, false>(sub, to, b - a, h_dry, dt_over_dx);
+        a = b;
+    }
 }
 
 AVALANCHE_SIMD_CLONES void waf_row_superbee(const FaceRowInput& in, const FaceRowOutput& out, int n,
