@@ -194,9 +194,21 @@ void Stepper::thin_layer_velocities(State& s) const {
 #pragma omp parallel for schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         const double* hrow = s.h.row(j);
+        const double* h_south = s.h.row(j - 1);  // ghost rows at the edges
+        const double* h_north = s.h.row(j + 1);
+        double* hu_row = s.hu.row(j);
+        double* hv_row = s.hv.row(j);
         for (int i = b.i0; i < b.i1; ++i) {
             const double h = hrow[i];
             if (h >= hmin) continue;  // the common case: one load, one compare
+            // No wet neighbour (most of the dry margin of the box): the velocity is
+            // zero, as the search below would find.
+            if (!(hrow[i - 1] >= hmin) && !(hrow[i + 1] >= hmin) && !(h_south[i] >= hmin) &&
+                !(h_north[i] >= hmin)) {
+                hu_row[i] = h * 0.0;
+                hv_row[i] = h * 0.0;
+                continue;
+            }
             double best = hmin, u = 0.0, v = 0.0;
             int best_i = i, best_j = j;
             const int ni[4] = {i - 1, i + 1, i, i};
