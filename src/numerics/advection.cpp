@@ -2,20 +2,19 @@
 //
 // The operator has seven stages: pressure coefficients and invariant bounds per cell,
 // the transverse predictor in y and the WAF x-fluxes, the predictor in x and the WAF
-// y-fluxes, the boundary faces, the donor factors, and the conservative update. Run
-// as whole-grid passes, every stage streams its inputs and outputs through memory: on
-// a 1000 x 1000 grid about 2 kB per cell update against ~11 GB/s of memory bandwidth
-// (docs/performance.md). Here the active box is cut into strips of kStripRows rows,
-// and one thread runs all stages for one strip into buffers of a few rows that stay
-// in its cache; only the state, the terrain and the updated state cross memory, and
-// the stage fields need no grid-sized storage.
+// y-fluxes, the boundary faces, the donor factors, and the conservative update. Here
+// the active box is cut into strips of kStripRows rows, and one thread runs all stages
+// for one strip into buffers of a few rows that stay in its cache, so the stage
+// fields need no grid-sized storage and only the state, the terrain and the updated
+// state cross memory (docs/numerics.md, "Implementation notes").
 //
-// A strip's update needs the stages on a few rows beyond it (the stencil reaches
-// three rows up and down); those are computed again by the neighbouring strip, with
-// the same inputs and expressions, so every value is the one the whole-grid passes
-// computed, and the result does not depend on the strip height or the thread count.
-// The updated state is written to a second buffer (the neighbouring strips still
-// read the old one) and copied back when all strips are done.
+// A strip's update needs the stages on up to four rows beyond it. A thread takes
+// consecutive strips and hands the rows each stage field needs from one strip to the
+// next (StripBuffers::carry_rows); only the first strip of its block computes them
+// afresh, with the same inputs and expressions, so every value is the one the
+// whole-grid passes computed and the result does not depend on the strip height or
+// the thread count. The updated state is written to a second buffer (the neighbouring
+// strips still read the old one) and copied back when all strips are done.
 #include <omp.h>
 
 #include <algorithm>
@@ -26,24 +25,18 @@
 #include "avalanche/numerics/face_flux_rows.hpp"
 #include "avalanche/numerics/stepper.hpp"
 #include "avalanche/numerics/update_rows.hpp"
-#include "energy_cap.hpp"
 
 namespace avalanche {
-
-namespace {
-constexpr double kNoBound = std::numeric_limits<double>::max();
-
-}  // namespace
 
 void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity) {
     stride = row_stride;
     rows = row_capacity;
     const std::size_t n = static_cast<std::size_t>(stride) * static_cast<std::size_t>(rows);
     for (auto* a : strip_arrays()) a->assign(n, 0.0);
-    u_lo.assign(n, kNoBound);
-    v_lo.assign(n, kNoBound);
-    u_hi.assign(n, -kNoBound);
-    v_hi.assign(n, -kNoBound);
+    u_lo.assign(n, kNoVelocityBound);
+    v_lo.assign(n, kNoVelocityBound);
+    u_hi.assign(n, -kNoVelocityBound);
+    v_hi.assign(n, -kNoVelocityBound);
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v})
         a->assign(static_cast<std::size_t>(stride), 0.0);
 }
@@ -326,9 +319,6 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     // is used, so both cells of a face compute the same product (x * 1 == x exactly
     // for the unscaled faces). A zero mass flux has no donor: its momentum (the
     // pressure of a wall face) passes unscaled.
-    const auto donor = [factor](const double* fh, std::ptrdiff_t k, std::ptrdiff_t off) {
-        return fh[k] == 0.0 ? 1.0 : factor[fh[k] > 0.0 ? k - off : k];
-    };
     const bool metric = terrain_.has_metric;
     const UpdateRowParams up{rx, ry, st, energy_budget_, numerics_.gravity};
     for (int r = J; r < Je; ++r) {
@@ -353,7 +343,7 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     // 6. Volume through the open edges, after scaling, per boundary face (summed in
     // advect() in a fixed order).
     const auto outflow = [&](const double* fh, std::ptrdiff_t k, std::ptrdiff_t off, double sign) {
-        return std::max(sign * (fh[k] * donor(fh, k, off)), 0.0);
+        return std::max(sign * (fh[k] * donor_factor_of(fh[k], factor[k - off], factor[k])), 0.0);
     };
     for (int r = J; r < Je; ++r) {
         if (b.i0 == 0) edge_outflow_[0][r] = outflow(fxh, w.k(0, r), 1, -1.0) * tau * grid_.dy;

@@ -10,8 +10,6 @@ namespace avalanche {
 
 namespace {
 
-constexpr double kNoBound = std::numeric_limits<double>::max();  // as in advection.cpp
-
 // One sub-step of gravity and friction on the velocity (u, v) of a cell; returns
 // the true speed^2 after it.
 template <bool Curvature, bool Metric>
@@ -171,10 +169,10 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
         speed2 += w * w;
     }
     const double shi = std::sqrt(speed2) + 2.0 * std::sqrt(p.k_max * in.gn[i] * hh * in.nt[i]);
-    out.u_lo[i] = wet ? u - ax : kNoBound;
-    out.u_hi[i] = wet ? u + ax : -kNoBound;
-    out.v_lo[i] = wet ? v - ay : kNoBound;
-    out.v_hi[i] = wet ? v + ay : -kNoBound;
+    out.u_lo[i] = wet ? u - ax : kNoVelocityBound;
+    out.u_hi[i] = wet ? u + ax : -kNoVelocityBound;
+    out.v_lo[i] = wet ? v - ay : kNoVelocityBound;
+    out.v_hi[i] = wet ? v + ay : -kNoVelocityBound;
     out.speed_hi[i] = wet ? shi : 0.0;
 }
 

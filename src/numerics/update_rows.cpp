@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
 
+#include "avalanche/numerics/cell_rows.hpp"
 #include "energy_cap.hpp"
 #include "simd_clones.hpp"
 
@@ -12,7 +12,6 @@ namespace avalanche {
 
 namespace {
 
-constexpr double kNoBound = std::numeric_limits<double>::max();  // as in advection.cpp
 constexpr double kRedo = std::numeric_limits<double>::quiet_NaN();
 
 // std::max(x, 0.0) on a value: std::max on an array element returns a reference to
@@ -34,13 +33,6 @@ AVALANCHE_SIMD_CLONES void donor_factor_clone(const FaceFluxRows& f, const doubl
     }
 }
 
-// The donor factor of the face whose mass flux is fh: the factor of the cell the mass
-// leaves (below / left when fh > 0, else above / right); a zero mass flux has no donor
-// (its momentum, the pressure of a wall face, passes unscaled).
-AVALANCHE_INLINE double donor_of(double fh, double factor_before, double factor_after) {
-    return fh == 0.0 ? 1.0 : (fh > 0.0 ? factor_before : factor_after);
-}
-
 // The scalar update of one cell, the definition the vector loop follows; used for the
 // cells whose velocity leaves their own invariant bounds.
 void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric, double* h_new,
@@ -48,10 +40,10 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
     const std::ptrdiff_t st = p.stride;
     const FaceFluxRows& f = in.f;
     const double* factor = in.factor;
-    const double fw = donor_of(f.fx_h[i], factor[i - 1], factor[i]);
-    const double fe = donor_of(f.fx_h[i + 1], factor[i], factor[i + 1]);
-    const double fs = donor_of(f.fy_h[i], factor[i - st], factor[i]);
-    const double fn = donor_of(f.fy_h[i + st], factor[i], factor[i + st]);
+    const double fw = donor_factor_of(f.fx_h[i], factor[i - 1], factor[i]);
+    const double fe = donor_factor_of(f.fx_h[i + 1], factor[i], factor[i + 1]);
+    const double fs = donor_factor_of(f.fy_h[i], factor[i - st], factor[i]);
+    const double fn = donor_factor_of(f.fy_h[i + st], factor[i], factor[i + st]);
     const double rx = p.rx, ry = p.ry;
     double hn = in.h[i] - rx * (f.fx_h[i + 1] * fe - f.fx_h[i] * fw) -
                 ry * (f.fy_h[i + st] * fn - f.fy_h[i] * fs);
@@ -67,7 +59,7 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
     }
     // Min / max over the 3 x 3 block around i (exact, so the order does not matter).
     const auto min9 = [st, i](const double* b) {
-        double m = kNoBound;
+        double m = kNoVelocityBound;
         for (std::ptrdiff_t r = i - st; r <= i + st; r += st)
             m = std::min({m, b[r - 1], b[r], b[r + 1]});
         return m;
@@ -80,12 +72,12 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
     };
     double u = qu / hn, v = qv / hn;
     if (!(in.u_lo[i] <= u && u <= in.u_hi[i] && in.v_lo[i] <= v && v <= in.v_hi[i])) {
-        const double ulo = min9(in.u_lo), uhi = max9(in.u_hi, -kNoBound);
+        const double ulo = min9(in.u_lo), uhi = max9(in.u_hi, -kNoVelocityBound);
         if (ulo > uhi) {  // no wet cell around: nothing can have moved it
             hu_new[i] = hv_new[i] = 0.0;
             return;
         }
-        const double vlo = min9(in.v_lo), vhi = max9(in.v_hi, -kNoBound);
+        const double vlo = min9(in.v_lo), vhi = max9(in.v_hi, -kNoVelocityBound);
         if (u < ulo || u > uhi) u = std::clamp(u, ulo, uhi);
         if (v < vlo || v > vhi) v = std::clamp(v, vlo, vhi);
     }
@@ -140,10 +132,10 @@ AVALANCHE_SIMD_CLONES void update_clone(const UpdateRowInput& in, const UpdateRo
         // two addresses would be a gather, which keeps the loop scalar.
         const double f_w = factor[i - 1], f_c = factor[i], f_e = factor[i + 1];
         const double f_s = factor[i - st], f_n = factor[i + st];
-        const double fw = donor_of(fxh[i], f_w, f_c);
-        const double fe = donor_of(fxh[i + 1], f_c, f_e);
-        const double fs = donor_of(fyh[i], f_s, f_c);
-        const double fn = donor_of(fyh[i + st], f_c, f_n);
+        const double fw = donor_factor_of(fxh[i], f_w, f_c);
+        const double fe = donor_factor_of(fxh[i + 1], f_c, f_e);
+        const double fs = donor_factor_of(fyh[i], f_s, f_c);
+        const double fn = donor_factor_of(fyh[i + st], f_c, f_n);
         double hn =
             h[i] - rx * (fxh[i + 1] * fe - fxh[i] * fw) - ry * (fyh[i + st] * fn - fyh[i] * fs);
         hn = hn < 0.0 ? 0.0 : hn;

@@ -5,6 +5,8 @@
 // stepper's scalar loop body with its branches turned into selections, so the results
 // are bitwise those of the scalar code (tests/regression/test_cell_rows.cpp).
 // Pointers address element 0 of the row; cells i0 .. i1 - 1 are processed.
+#include <limits>
+
 #include "avalanche/physics/earth_pressure.hpp"
 
 namespace avalanche {
@@ -51,6 +53,10 @@ struct PressureRowInput {
     const double *h_s, *v_s, *h_n, *v_n;
     const double *px, *py, *gn, *nt, *sx, *sy;
 };
+
+// The invariant bounds of a dry or thin cell, which bounds nothing: u_lo = v_lo =
+// kNoVelocityBound, u_hi = v_hi = -kNoVelocityBound.
+inline constexpr double kNoVelocityBound = std::numeric_limits<double>::max();
 
 // Per cell: the pressure coefficients k p and the invariant bounds of the update.
 struct PressureRowOutput {

@@ -14,6 +14,13 @@
 
 namespace avalanche {
 
+// The donor factor of the face whose mass flux is fh: the factor of the cell the mass
+// leaves (below / left when fh > 0, else above / right); a zero mass flux has no donor
+// (its momentum, the pressure of a wall face, passes unscaled).
+inline double donor_factor_of(double fh, double factor_before, double factor_after) noexcept {
+    return fh == 0.0 ? 1.0 : (fh > 0.0 ? factor_before : factor_after);
+}
+
 struct FaceFluxRows {
     const double *fx_h, *fx_hu, *fx_hv;  // x-faces: face i lies left of cell i
     const double *fy_h, *fy_hu, *fy_hv;  // y-faces: face (i, r) lies below cell (i, r)
