@@ -18,8 +18,7 @@ struct FaceFlux {
 };
 
 // The side velocities come in as the quotients q / h of every cell (ul_any = qn_l / h_l,
-// ...), computed by the caller once per cell or here per face; a dry side's quotient
-// is discarded.
+// ...), computed by the caller once per cell; a dry side's quotient is discarded.
 AVALANCHE_INLINE FaceFlux hllc_lane(double h_l, double ul_any, double vl_any, double h_r,
                                     double ur_any, double vr_any, double c_l, double c_r,
                                     double h_dry) {
@@ -92,11 +91,10 @@ AVALANCHE_INLINE double waf_component(double f0, double f1, double f2, double f3
     return 0.5 * (f0 + f3) - outer - w[1] * (f2 - f1);
 }
 
-// Stepper::face_fluxes for one face with all four stencil cells at least h_dry
-// thick (so both sides wet, h_dry > 0): hllc_fan's wet/wet fan, the wave-strength
-// and shear limiter ratios, waf_flux.
-// The cells' velocities come in as the quotients q / h (ul = qn_l / h_l, vl = qt_l / h_l,
-// v_ll = qt_ll / h_ll, ...), computed once per cell or per face by the caller.
+// waf_face_flux (waf_face.hpp) for one face with all four stencil cells at least
+// h_dry thick (so both sides wet, h_dry > 0): hllc_fan's wet/wet fan, the
+// wave-strength and shear limiter ratios, waf_flux. The cells' velocities come in as
+// the quotients q / h (ul = qn_l / h_l, vl = qt_l / h_l, v_ll = qt_ll / h_ll, ...).
 template <Limiter L>
 AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, double h_l, double qn_l,
                                    double ul, double vl, double h_r, double qn_r, double ur,
@@ -149,14 +147,10 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, doubl
             waf_component(f0.qt, f1t, f2t, f3.qt, w)};
 }
 
-// Velocities: the side quotients come from the caller's per-cell arrays in.un, in.ut.
-template <bool Velocities>
 AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                double h_dry) {
     const std::ptrdiff_t off = in.off;
     const double* __restrict h = in.h;
-    const double* __restrict qn = in.qn;
-    const double* __restrict qt = in.qt;
     const double* __restrict un = in.un;
     const double* __restrict ut = in.ut;
     const double* __restrict c = in.c;
@@ -165,20 +159,8 @@ AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out,
     double* __restrict oqt = out.qt;
 #pragma omp simd
     for (int i = 0; i < n; ++i) {
-        const double hl = h[i - off], hr = h[i];
-        double ul, vl, ur, vr;
-        if constexpr (Velocities) {
-            ul = un[i - off];
-            vl = ut[i - off];
-            ur = un[i];
-            vr = ut[i];
-        } else {
-            ul = qn[i - off] / hl;
-            vl = qt[i - off] / hl;
-            ur = qn[i] / hr;
-            vr = qt[i] / hr;
-        }
-        const FaceFlux f = hllc_lane(hl, ul, vl, hr, ur, vr, c[i - off], c[i], h_dry);
+        const FaceFlux f = hllc_lane(h[i - off], un[i - off], ut[i - off], h[i], un[i], ut[i],
+                                     c[i - off], c[i], h_dry);
         oh[i] = f.h;
         oqn[i] = f.qn;
         oqt[i] = f.qt;
@@ -195,14 +177,12 @@ AVALANCHE_INLINE void stencil_thinnest(const FaceRowInput& in, int n, double* __
         thin[i] = std::min(std::min(h[i - 2 * off], h[i - off]), std::min(h[i], h[i + off]));
 }
 
-// Velocities: the quotients q / h of the cells come from in.un, in.ut.
-template <Limiter L, bool Fronts, bool Velocities>
+template <Limiter L, bool Fronts>
 AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry,
                               double dt_over_dx) {
     const std::ptrdiff_t off = in.off;
     const double* __restrict h = in.h;
     const double* __restrict qn = in.qn;
-    const double* __restrict qt = in.qt;
     const double* __restrict un = in.un;
     const double* __restrict ut = in.ut;
     const double* __restrict c = in.c;
@@ -212,25 +192,10 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
 #pragma omp simd
     for (int i = 0; i < n; ++i) {
         const double hll = h[i - 2 * off], hl = h[i - off], hr = h[i], hrr = h[i + off];
-        double ul, vl, ur, vr, v_ll, v_rr;
-        if constexpr (Velocities) {
-            ul = un[i - off];
-            vl = ut[i - off];
-            ur = un[i];
-            vr = ut[i];
-            v_ll = ut[i - 2 * off];
-            v_rr = ut[i + off];
-        } else {
-            ul = qn[i - off] / hl;
-            vl = qt[i - off] / hl;
-            ur = qn[i] / hr;
-            vr = qt[i] / hr;
-            v_ll = qt[i - 2 * off] / hll;
-            v_rr = qt[i + off] / hrr;
-        }
+        const double ul = un[i - off], vl = ut[i - off], ur = un[i], vr = ut[i];
         const FaceFlux w =
-            waf_lane<L>(hll, qn[i - 2 * off], v_ll, hl, qn[i - off], ul, vl, hr, qn[i], ur, vr, hrr,
-                        qn[i + off], v_rr, c[i - off], c[i], h_dry, dt_over_dx);
+            waf_lane<L>(hll, qn[i - 2 * off], ut[i - 2 * off], hl, qn[i - off], ul, vl, hr, qn[i],
+                        ur, vr, hrr, qn[i + off], ut[i + off], c[i - off], c[i], h_dry, dt_over_dx);
         if constexpr (Fronts) {
             // At a wet/dry front (a stencil cell thinner than h_dry) the first-order flux.
             const bool front = (hll < h_dry) | (hl < h_dry) | (hr < h_dry) | (hrr < h_dry);
@@ -255,7 +220,6 @@ AVALANCHE_INLINE void waf_row_dispatch(const FaceRowInput& in, const FaceRowOutp
     thread_local std::vector<double> thin;
     if (thin.size() < static_cast<std::size_t>(n)) thin.resize(static_cast<std::size_t>(n));
     stencil_thinnest(in, n, thin.data());
-    const bool velocities = in.un != nullptr;
     for (int a = 0; a < n;) {
         const bool front = !(thin[static_cast<std::size_t>(a)] >= h_dry);
         int b = a + 1;
@@ -265,19 +229,13 @@ AVALANCHE_INLINE void waf_row_dispatch(const FaceRowInput& in, const FaceRowOutp
         sub.qn += a;
         sub.qt += a;
         sub.c += a;
-        if (velocities) {
-            sub.un += a;
-            sub.ut += a;
-        }
+        sub.un += a;
+        sub.ut += a;
         const FaceRowOutput to{out.h + a, out.qn + a, out.qt + a};
-        if (front && velocities)
-            waf_row<L, true, true>(sub, to, b - a, h_dry, dt_over_dx);
-        else if (front)
-            waf_row<L, true, false>(sub, to, b - a, h_dry, dt_over_dx);
-        else if (velocities)
-            waf_row<L, false, true>(sub, to, b - a, h_dry, dt_over_dx);
+        if (front)
+            waf_row<L, true>(sub, to, b - a, h_dry, dt_over_dx);
         else
-            waf_row<L, false, false>(sub, to, b - a, h_dry, dt_over_dx);
+            waf_row<L, false>(sub, to, b - a, h_dry, dt_over_dx);
         a = b;
     }
 }
@@ -300,13 +258,9 @@ AVALANCHE_SIMD_CLONES void waf_row_minmod(const FaceRowInput& in, const FaceRowO
 }
 AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                         double h_dry) {
-    if (in.un != nullptr)
-        hllc_row<true>(in, out, n, h_dry);
-    else
-        hllc_row<false>(in, out, n, h_dry);
+    hllc_row(in, out, n, h_dry);
 }
 
-template <bool Velocities>
 AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRowOutput& flux,
                                              double ratio, const FaceRowOutput& out, int n) {
     double* __restrict pun = out.un;
@@ -331,10 +285,8 @@ AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRo
         ph[i] = h_p;
         pqn[i] = qn_p;
         pqt[i] = qt_p;
-        if constexpr (Velocities) {  // the quotients of the stored values
-            pun[i] = qn_p / h_p;
-            put[i] = qt_p / h_p;
-        }
+        pun[i] = qn_p / h_p;  // the quotients of the stored values
+        put[i] = qt_p / h_p;
     }
 }
 
@@ -342,10 +294,7 @@ AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRo
 
 void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio,
                    const FaceRowOutput& out, int n) noexcept {
-    if (out.un != nullptr)
-        predictor_row_any<true>(q, flux, ratio, out, n);
-    else
-        predictor_row_any<false>(q, flux, ratio, out, n);
+    predictor_row_any(q, flux, ratio, out, n);
 }
 
 void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry) noexcept {

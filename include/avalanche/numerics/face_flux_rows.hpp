@@ -29,8 +29,9 @@ struct FaceRowInput {
     const double* qt;  // momentum along the faces
     const double* c;   // pressure coefficient k g_z per cell
     std::ptrdiff_t off;
-    // Optional: the quotients qn / h and qt / h per cell, computed once per cell by the
-    // caller (bitwise the kernels' own divisions).
+    // The quotients qn / h and qt / h per cell (inf or NaN where h = 0), computed once
+    // per cell by the caller; required by the flux kernels, which read the velocities
+    // from them (and qn for the WAF jumps), not by predictor_row.
     const double* un = nullptr;
     const double* ut = nullptr;
 };
@@ -39,7 +40,7 @@ struct FaceRowOutput {
     double* h;
     double* qn;
     double* qt;
-    // Optional (predictor_row only): the quotients qn / h and qt / h of the values
+    // predictor_row (required there): the quotients qn / h and qt / h of the values
     // written, for waf_face_row's FaceRowInput::un, ut.
     double* un = nullptr;
     double* ut = nullptr;
