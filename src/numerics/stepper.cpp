@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "avalanche/numerics/cell_rows.hpp"
-#include "energy_cap.hpp"
+#include "avalanche/numerics/energy_cap.hpp"
 
 namespace avalanche {
 

@@ -1,7 +1,8 @@
 // The vectorised per-cell row kernels (cell_rows.hpp) must give bitwise what the
 // stepper's scalar loops gave before they were vectorised. The references below are
 // those loops as they stood (stepper.cpp, apply_sources and stable_dt, 2026-11-22),
-// kept here as the definition. Rows mix dry, thin, moving, stopping and capped cells,
+// kept here as the definition (they call the scalar cap_speed of energy_cap.hpp, which
+// they called then). Rows mix dry, thin, moving, stopping and capped cells,
 // with and without curvature and metric terms, one and several sub-steps.
 #include <gtest/gtest.h>
 
@@ -13,23 +14,13 @@
 #include <vector>
 
 #include "avalanche/numerics/cell_rows.hpp"
+#include "avalanche/numerics/energy_cap.hpp"
 
 using namespace avalanche;
 
 namespace {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
-void cap_speed_reference(double& u, double& v, double speed2, double cap2) {
-    if (speed2 <= cap2) return;
-    if (cap2 <= 0.0) {
-        u = v = 0.0;
-        return;
-    }
-    const double scale = std::sqrt(cap2 / speed2);
-    u *= scale;
-    v *= scale;
-}
 
 struct Row {
     std::vector<double> h, hu, hv, ax, ay, gn, elev, cxx, cxy, cyy, sx, sy, px, py;
@@ -110,7 +101,7 @@ TEST(CellRows, SourcesRowIsBitwiseTheScalarSourceLoop) {
             const double cap2 = 2.0 * (budget - g * ref.elev[i]);
             if (after2 > cap2) ++capped;
             if (u == 0.0 && v == 0.0) ++stopped;
-            cap_speed_reference(u, v, after2, cap2);
+            cap_speed(u, v, after2, cap2);
             ref.hu[i] = ref.h[i] * u;
             ref.hv[i] = ref.h[i] * v;
         }

@@ -2,7 +2,8 @@
 // update with its velocity clamps; cell_rows.hpp: the pressure stage) must give
 // bitwise what the whole-grid scalar loops of the stepper gave before they were
 // vectorised. The references below are those loops (stepper.cpp, limit_and_update
-// and update_pressure_coefficients, 2026-11-22), kept here as the definition. Rows
+// and update_pressure_coefficients, 2026-11-22), kept here as the definition (with
+// the scalar cap_speed of energy_cap.hpp, which they called then). Rows
 // mix empty, emptied, thin and wet cells, velocities inside and outside their own
 // invariant bounds, cells with no wet neighbour, speeds over the own and the 3 x 3
 // speed bound, and cells over the energy cap.
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "avalanche/numerics/cell_rows.hpp"
+#include "avalanche/numerics/energy_cap.hpp"
 #include "avalanche/numerics/update_rows.hpp"
 
 using namespace avalanche;
@@ -35,17 +37,6 @@ struct Rows {
     double* mid() { return v.data() + w; }
     const double* mid() const { return v.data() + w; }
 };
-
-void cap_speed_reference(double& u, double& v, double speed2, double cap2) {
-    if (speed2 <= cap2) return;
-    if (cap2 <= 0.0) {
-        u = v = 0.0;
-        return;
-    }
-    const double scale = std::sqrt(cap2 / speed2);
-    u *= scale;
-    v *= scale;
-}
 
 }  // namespace
 
@@ -186,7 +177,7 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
                 }
                 const double cap2 = 2.0 * (budget - g * elev.v[k]);
                 if (speed2 > cap2) ++capped;
-                cap_speed_reference(u, v, speed2, cap2);
+                cap_speed(u, v, speed2, cap2);
                 ref_hu = hn * u;
                 ref_hv = hn * v;
             }();

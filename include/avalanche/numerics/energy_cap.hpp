@@ -1,6 +1,6 @@
 #pragma once
-// The speed cap of the stepper's energy budget (stepper.hpp), shared by the
-// advection update (advection.cpp) and the thin-layer rule (stepper.cpp).
+// The speed cap of the stepper's energy budget (stepper.hpp): used by the update
+// (update_rows.cpp), the thin-layer rule (stepper.cpp) and the kernels' reference tests.
 #include <cmath>
 
 namespace avalanche {
