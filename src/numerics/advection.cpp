@@ -117,15 +117,13 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     const bool waf = numerics_.scheme == Scheme::waf;
     const double hd = h_min_;
     const std::ptrdiff_t st = s.h.stride();
-    // The thread's previous strip ended at J: its rows from J - 3 up are this strip's
-    // lower rows; move them to the bottom of the buffers and compute only the rest.
-    // Otherwise start empty.
     // Columns of the per-cell stage and the y-predictor: every column a stage uses.
     const int pc0 = std::max(b.i0 - ng, -ng), pc1 = std::min(b.i1 + ng, nx + ng);
     w.ng = ng;
+    // The thread's previous strip ended at J: the stage rows this strip reads and that
+    // one computed are moved to their places in the buffers (carry_rows), and only the
+    // rest is computed below. Otherwise every stage starts empty.
     if (w.carried_for == J) {
-        // The next strip reads none of its stage rows below J - 1 (the update's
-        // 3 x 3 reach): the buffers' rows J - 4 .. J - 2 stay unused.
         w.carry_rows(J - 4 - w.base, waf, pc0, pc1);
     } else {
         w.vel_end = w.p_end = w.yfo_end = w.xf_end = w.xp_end = w.yf_end = w.fac_end =
@@ -142,9 +140,9 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     const int q0 = std::max(std::min({J - 1, x0 - 1, y0 - 1, xp0}), pr0);
     const int q1 = std::min(std::max({Je + 1, x1 + 1, y1, xp1}), pr1);
 
-    // 1. Pressure coefficients and invariant bounds.
-    // 0. The velocity quotients of the state, once per cell, for the pressure stage
-    // (rows q0 - 1 .. q1) and the first-order fluxes on the state (rows J - 4 .. Je + 2).
+    // 1. The velocity quotients of the state, once per cell, for the pressure stage
+    // (rows q0 - 1 .. q1) and the first-order fluxes on the state (rows J - 4 .. Je + 2);
+    // then the pressure coefficients and invariant bounds.
     const int v0 = std::max(J - 4, -ng), v1 = std::min(Je + 4, ny + ng);
     for (int r = std::max(v0, w.vel_end); r < v1; ++r) {
         const std::ptrdiff_t k = w.k(0, r);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "avalanche/numerics/energy_cap.hpp"
 #include "simd_clones.hpp"
 
 namespace avalanche {
@@ -55,15 +56,10 @@ AVALANCHE_INLINE void sources_row(double* __restrict h, double* __restrict hu,
             for (int n = 0; n < m; ++n)
                 after2 = gravity_friction<Curvature, Metric>(u, v, t, i, sub, td);
         }
-        // The energy cap (cap_speed in stepper.cpp): scale down to the cap, stop
-        // above the reachable height.
-        const double cap2 = 2.0 * (budget - g * elev[i]);
-        const double cap_scale = std::sqrt(cap2 / after2);
-        const bool over = !(after2 <= cap2);
-        const double uc = over ? (cap2 <= 0.0 ? 0.0 : u * cap_scale) : u;
-        const double vc = over ? (cap2 <= 0.0 ? 0.0 : v * cap_scale) : v;
-        hu[i] = wet ? hh * uc : hu[i];
-        hv[i] = wet ? hh * vc : hv[i];
+        // The energy cap: scale down to the cap, stop above the reachable height.
+        cap_speed_selected(u, v, after2, 2.0 * (budget - g * elev[i]));
+        hu[i] = wet ? hh * u : hu[i];
+        hv[i] = wet ? hh * v : hv[i];
     }
 }
 

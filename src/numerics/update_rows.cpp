@@ -164,12 +164,8 @@ AVALANCHE_SIMD_CLONES void update_clone(const UpdateRowInput& in, const UpdateRo
             speed2 += w * w;
         }
         const double slow = speed2 > shi[i] * shi[i] ? 0.0 : 1.0;
-        // The energy cap (cap_speed).
-        const double cap2 = 2.0 * (budget - g * elev[i]);
-        const double scale = std::sqrt(cap2 / speed2);
-        const bool over = !(speed2 <= cap2);
-        const double uc = over ? (cap2 <= 0.0 ? 0.0 : u * scale) : u;
-        const double vc = over ? (cap2 <= 0.0 ? 0.0 : v * scale) : v;
+        double uc = u, vc = v;  // the energy cap
+        cap_speed_selected(uc, vc, speed2, 2.0 * (budget - g * elev[i]));
         // A cell outside its own bounds is marked with a NaN momentum for
         // update_cell (a NaN the update produces is recomputed there as well).
         const bool redo = empty ? false : own * slow == 0.0;
