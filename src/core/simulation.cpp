@@ -58,10 +58,9 @@ double total_volume(const State& s, const Grid& g) {
 
 namespace {
 
-// Boxes smaller than this are scanned or copied on one thread, for the reason of
-// Stepper::kMinCellsPerThreadedStep (stepper.hpp): waking the team costs more than
-// a pass over a few thousand cells.
-constexpr std::size_t kMinCellsPerThreadedPass = 20000;
+// Boxes smaller than this are scanned or copied on one thread (stepper.hpp: waking
+// the team costs more than a pass over a few thousand cells).
+constexpr std::size_t kMinCellsPerThreadedPass = Stepper::kMinCellsPerThreadedStep;
 
 struct RowScan {
     long double kinetic = 0.0L;  // sum of h |u|^2 / 2 over the row (not yet x dA)

@@ -60,6 +60,13 @@ class Stepper {
     // Number of cell updates performed (active cells x steps).
     [[nodiscard]] std::uint64_t cell_updates() const { return cell_updates_; }
 
+    // Small active areas run on one thread: a parallel region costs tens of
+    // microseconds to wake the team, more than the work of a few thousand cells, and
+    // on a shared machine a descheduled thread stalls every region (a 0.5 s test took
+    // 10 s on two threads). Results do not depend on it. (Simulation's per-step passes
+    // use the same threshold.)
+    static constexpr std::size_t kMinCellsPerThreadedStep = 20000;
+
     // The operators, public for tests of the splitting.
     void advect(State& s, double tau);
     void apply_sources(State& s, double dt) const;
@@ -128,11 +135,6 @@ class Stepper {
     double k_max_;          // largest earth-pressure coefficient
     double energy_budget_;  // see energy_budget(); +infinity = not set
     bool budget_set_ = false;
-    // Small active areas run on one thread: a parallel region costs tens of
-    // microseconds to wake the team, more than the work of a few thousand cells, and
-    // on a shared machine a descheduled thread stalls every region (a 0.5 s test took
-    // 10 s on two threads). Results do not depend on it.
-    static constexpr std::size_t kMinCellsPerThreadedStep = 20000;
     bool threaded_ = false;
     double outflow_volume_ = 0.0;
     std::array<std::vector<double>, 4>
