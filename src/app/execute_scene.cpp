@@ -122,7 +122,8 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
     const ReleaseTop top = release_top(scene.grid, scene.terrain, initial, s.output.h_threshold);
     const std::vector<std::uint8_t> release_cells = cells_with_material(initial, scene.grid);
     // Alive for the run only: the products need the maps and the statistics, not the
-    // solver's state and scratch (14 doubles per cell), whose memory they can reuse.
+    // solver's state and its advection buffer (6 doubles per cell), whose memory they
+    // can reuse. (The terrain belongs to the scene and stays.)
     std::optional<Simulation> sim(std::in_place, scene.grid, scene.terrain, s.material, s.numerics,
                                   std::move(initial), h_min);
     if (!scene.outside_data.empty()) sim->set_sink_cells(scene.outside_data);
