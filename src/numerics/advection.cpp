@@ -37,14 +37,14 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity
     v_lo.assign(n, kNoVelocityBound);
     u_hi.assign(n, -kNoVelocityBound);
     v_hi.assign(n, -kNoVelocityBound);
-    for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v})
+    for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);
 }
 
 std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
-    return {&su,       &sv,    &cx,     &cy,     &u_lo,   &u_hi,    &v_lo,    &v_hi,
-            &speed_hi, &yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &pred_u,
-            &pred_v,   &fx_h,  &fx_hu,  &fx_hv,  &fy_h,   &fy_hu,   &fy_hv,   &factor};
+    return {&su,     &sv,     &cx,     &cy,     &ax,     &ay,    &u_lo,  &u_hi,  &v_lo,
+            &v_hi,   &speed_hi, &yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &pred_u,
+            &pred_v, &pred_a, &fx_h,  &fx_hu,  &fx_hv,  &fy_h,   &fy_hu,   &fy_hv,   &factor};
 }
 
 void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
@@ -58,12 +58,13 @@ void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
     };
     const Carried first_order[] = {
         {&su, 1, 3},        {&sv, 1, 3},    {&cx, 1, 2},    {&cy, 1, 2},
+        {&ax, 1, 2},        {&ay, 1, 2},
         {&u_lo, -1, 4},     {&u_hi, -1, 4}, {&v_lo, -1, 4}, {&v_hi, -1, 4},
         {&speed_hi, -1, 4}, {&fx_h, 0, 1},  {&fx_hu, 0, 1}, {&fx_hv, 0, 1},
         {&fy_h, 0, 2},      {&fy_hu, 0, 2}, {&fy_hv, 0, 2}, {&factor, -1, 2}};
     const Carried predictors[] = {{&yfo_h, 1, 1},  {&yfo_qn, 1, 1},  {&yfo_qt, 1, 1},
                                   {&pred_h, 0, 3}, {&pred_hu, 0, 3}, {&pred_hv, 0, 3},
-                                  {&pred_u, 0, 3}, {&pred_v, 0, 3}};
+                                  {&pred_u, 0, 3}, {&pred_v, 0, 3}, {&pred_a, 0, 3}};
     const std::ptrdiff_t first = i0 + ng, width = i1 - i0;
     const auto move = [&](const Carried& c) {
         double* d = c.a->data();
@@ -103,7 +104,7 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
                               metric ? terrain_.sy.row(r) : nullptr};
     const PressureRowOutput out{w.cx.data() + o,      w.cy.data() + o,   w.u_lo.data() + o,
                                 w.u_hi.data() + o,    w.v_lo.data() + o, w.v_hi.data() + o,
-                                w.speed_hi.data() + o};
+                                w.speed_hi.data() + o, w.ax.data() + o,    w.ay.data() + o};
     const PressureRowParams p{k_, k_max_, h_min_,
                               material_.earth_pressure == EarthPressureModel::isotropic};
     avalanche::pressure_row(in, out, p, ia, ib, -ng, grid_.nx + ng - 1);
@@ -158,9 +159,13 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     const double* shu = s.hu.raw().data();
     const double* shv = s.hv.raw().data();
     const auto full = [&](int i, int r) { return s.h.index(i, r); };
+    // c: the pressure coefficients, a: the celerities (both from buffer index kc).
     const auto face_in = [&](const double* h, const double* qn, const double* qt, std::ptrdiff_t kq,
-                             const std::vector<double>& c, std::ptrdiff_t kc, std::ptrdiff_t off) {
-        return FaceRowInput{h + kq, qn + kq, qt + kq, c.data() + kc, off};
+                             const std::vector<double>& c, const std::vector<double>& a,
+                             std::ptrdiff_t kc, std::ptrdiff_t off) {
+        FaceRowInput in{h + kq, qn + kq, qt + kq, c.data() + kc, off};
+        in.a = a.data() + kc;
+        return in;
     };
     // The same with the state's velocity quotients (normal un, tangential ut) from buffer index kv.
     const auto with_velocities = [](FaceRowInput in, const std::vector<double>& un,
@@ -218,8 +223,8 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
         for (int r = std::max(x0, w.yfo_end); r <= x1;
              ++r)  // first-order y-faces r (rows r - 1 | r)
             hllc_face_row(
-                with_velocities(face_in(sh, shv, shu, full(pc0, r), w.cy, w.k(pc0, r), st), w.sv,
-                                w.su, w.k(pc0, r)),
+                with_velocities(face_in(sh, shv, shu, full(pc0, r), w.cy, w.ay, w.k(pc0, r), st),
+                                w.sv, w.su, w.k(pc0, r)),
                 face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), n, hd);
         w.yfo_end = std::max(w.yfo_end, x1 + 1);
         for (int r = std::max(x0, w.xf_end); r < x1; ++r) {
@@ -229,13 +234,16 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
             FaceRowOutput predicted = face_out(w.row_h, w.row_hv, w.row_hu, pc0 + ng);
             predicted.un = w.row_v.data() + pc0 + ng;
             predicted.ut = w.row_u.data() + pc0 + ng;
-            predictor_row(face_in(sh, shv, shu, full(pc0, r), w.cy, w.k(pc0, r), st),
+            predictor_row(face_in(sh, shv, shu, full(pc0, r), w.cy, w.ay, w.k(pc0, r), st),
                           face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), ratio, predicted, n);
+            celerity_row(w.row_h.data() + pc0 + ng, w.cx.data() + w.k(pc0, r), hd,
+                         w.row_a.data() + pc0 + ng, n);
             const std::ptrdiff_t k = w.k(b.i0, r), c0 = b.i0 + ng;
             FaceRowInput in{w.row_h.data() + c0, w.row_hu.data() + c0, w.row_hv.data() + c0,
                             w.cx.data() + k, 1};
             in.un = w.row_u.data() + c0;
             in.ut = w.row_v.data() + c0;
+            in.a = w.row_a.data() + c0;
             waf_face_row(in, face_out(w.fx_h, w.fx_hu, w.fx_hv, k), b.i1 + 1 - b.i0, hd, dt_dx,
                          lim);
             fix_x_faces(r);
@@ -243,8 +251,8 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     } else {
         for (int r = std::max(x0, w.xf_end); r < x1; ++r) {
             hllc_face_row(
-                with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), w.su,
-                                w.sv, w.k(b.i0, r)),
+                with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.ax, w.k(b.i0, r), 1),
+                                w.su, w.sv, w.k(b.i0, r)),
                 face_out(w.fx_h, w.fx_hu, w.fx_hv, w.k(b.i0, r)), b.i1 + 1 - b.i0, hd);
             fix_x_faces(r);
         }
@@ -259,20 +267,22 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
             const FaceRowOutput first_order{w.row_h.data() + b.i0 + ng, w.row_hu.data() + b.i0 + ng,
                                             w.row_hv.data() + b.i0 + ng};
             hllc_face_row(
-                with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), w.su,
-                                w.sv, w.k(b.i0, r)),
+                with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.ax, w.k(b.i0, r), 1),
+                                w.su, w.sv, w.k(b.i0, r)),
                 first_order, n + 1, hd);
             FaceRowOutput predicted = face_out(w.pred_h, w.pred_hu, w.pred_hv, w.k(b.i0, r));
             predicted.un = w.pred_u.data() + w.k(b.i0, r);
             predicted.ut = w.pred_v.data() + w.k(b.i0, r);
-            predictor_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.k(b.i0, r), 1), first_order,
-                          ratio, predicted, n);
+            predictor_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.ax, w.k(b.i0, r), 1),
+                          first_order, ratio, predicted, n);
+            celerity_row(w.pred_h.data() + w.k(b.i0, r), w.cy.data() + w.k(b.i0, r), hd,
+                         w.pred_a.data() + w.k(b.i0, r), n);
         }
         w.xp_end = std::max(w.xp_end, xp1);
         for (int r = std::max(y0, w.yf_end); r < y1; ++r) {
             const std::ptrdiff_t k = w.k(b.i0, r);
             waf_face_row(with_velocities(face_in(w.pred_h.data(), w.pred_hv.data(),
-                                                 w.pred_hu.data(), k, w.cy, k, st),
+                                                 w.pred_hu.data(), k, w.cy, w.pred_a, k, st),
                                          w.pred_v, w.pred_u, k),
                          face_out(w.fy_h, w.fy_hv, w.fy_hu, k), n, hd, dt_dy, lim);
             fix_y_faces(r);
@@ -280,8 +290,8 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     } else {
         for (int r = std::max(y0, w.yf_end); r < y1; ++r) {
             hllc_face_row(
-                with_velocities(face_in(sh, shv, shu, full(b.i0, r), w.cy, w.k(b.i0, r), st), w.sv,
-                                w.su, w.k(b.i0, r)),
+                with_velocities(face_in(sh, shv, shu, full(b.i0, r), w.cy, w.ay, w.k(b.i0, r), st),
+                                w.sv, w.su, w.k(b.i0, r)),
                 face_out(w.fy_h, w.fy_hv, w.fy_hu, w.k(b.i0, r)), b.i1 - b.i0, hd);
             fix_y_faces(r);
         }

@@ -158,7 +158,10 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
     // (docs/numerics.md, step 8). Dry and thin cells bound nothing.
     const bool wet = (hh >= hmin) & (hh > 0.0);
     const double u = in.u[i], v = in.v[i];  // hu / hh, hv / hh
-    const double ax = 2.0 * std::sqrt(cx * hh), ay = 2.0 * std::sqrt(cy * hh);
+    const double cel_x = std::sqrt(cx * (wet ? hh : 0.0)), cel_y = std::sqrt(cy * (wet ? hh : 0.0));
+    out.ax[i] = cel_x;
+    out.ay[i] = cel_y;
+    const double ax = 2.0 * cel_x, ay = 2.0 * cel_y;  // used on wet cells only
     double speed2 = u * u + v * v;
     if constexpr (Metric) {
         const double w = in.sx[i] * u + in.sy[i] * v;

@@ -18,10 +18,11 @@ struct FaceFlux {
 };
 
 // The side velocities come in as the quotients q / h of every cell (ul_any = qn_l / h_l,
-// ...), computed by the caller once per cell; a dry side's quotient is discarded.
+// ...), computed by the caller once per cell; a dry side's quotient is discarded. The
+// celerities al = sqrt(c_l h_l), ar (0 on a dry side) come per cell too (celerity_row).
 AVALANCHE_INLINE FaceFlux hllc_lane(double h_l, double ul_any, double vl_any, double h_r,
                                     double ur_any, double vr_any, double c_l, double c_r,
-                                    double h_dry) {
+                                    double al, double ar, double h_dry) {
     // Non-short-circuit logic and divisions evaluated for every lane: conditional
     // arithmetic would keep the loop scalar.
     const bool wet_l = (h_l >= h_dry) & (h_l > 0.0);
@@ -29,7 +30,6 @@ AVALANCHE_INLINE FaceFlux hllc_lane(double h_l, double ul_any, double vl_any, do
     const double hl = wet_l ? h_l : 0.0, hr = wet_r ? h_r : 0.0;
     const double ul = wet_l ? ul_any : 0.0, vl = wet_l ? vl_any : 0.0;
     const double ur = wet_r ? ur_any : 0.0, vr = wet_r ? vr_any : 0.0;
-    const double al = std::sqrt(c_l * hl), ar = std::sqrt(c_r * hr);
     // The three speed cases of the scalar kernel: right side dry, left side dry, both wet.
     const double s_l_wet = std::min(ul - al, ur - ar);
     const double s_r_wet = std::max(ul + al, ur + ar);
@@ -94,14 +94,15 @@ AVALANCHE_INLINE double waf_component(double f0, double f1, double f2, double f3
 // waf_face_flux (waf_face.hpp) for one face with all four stencil cells at least
 // h_dry thick (so both sides wet, h_dry > 0): hllc_fan's wet/wet fan, the
 // wave-strength and shear limiter ratios, waf_flux. The cells' velocities come in as
-// the quotients q / h (ul = qn_l / h_l, vl = qt_l / h_l, v_ll = qt_ll / h_ll, ...).
+// the quotients q / h (ul = qn_l / h_l, vl = qt_l / h_l, v_ll = qt_ll / h_ll, ...), the
+// celerities al = sqrt(c_l h_l), ar = sqrt(c_r h_r) per cell (celerity_row).
 template <Limiter L>
 AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, double h_l, double qn_l,
                                    double ul, double vl, double h_r, double qn_r, double ur,
                                    double vr, double h_rr, double qn_rr, double v_rr, double c_l,
-                                   double c_r, double h_dry, double dt_over_dx) {
+                                   double c_r, double al, double ar, double h_dry,
+                                   double dt_over_dx) {
     constexpr double kFlat = 1e-12;  // waf_face_flux (waf_face.hpp)
-    const double al = std::sqrt(c_l * h_l), ar = std::sqrt(c_r * h_r);
     const double s_l = std::min(ul - al, ur - ar);
     const double s_r = std::max(ul + al, ur + ar);
     const double s_star =
@@ -154,13 +155,14 @@ AVALANCHE_INLINE void hllc_row(const FaceRowInput& in, const FaceRowOutput& out,
     const double* __restrict un = in.un;
     const double* __restrict ut = in.ut;
     const double* __restrict c = in.c;
+    const double* __restrict a = in.a;
     double* __restrict oh = out.h;
     double* __restrict oqn = out.qn;
     double* __restrict oqt = out.qt;
 #pragma omp simd
     for (int i = 0; i < n; ++i) {
         const FaceFlux f = hllc_lane(h[i - off], un[i - off], ut[i - off], h[i], un[i], ut[i],
-                                     c[i - off], c[i], h_dry);
+                                     c[i - off], c[i], a[i - off], a[i], h_dry);
         oh[i] = f.h;
         oqn[i] = f.qn;
         oqt[i] = f.qt;
@@ -186,6 +188,7 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
     const double* __restrict un = in.un;
     const double* __restrict ut = in.ut;
     const double* __restrict c = in.c;
+    const double* __restrict a = in.a;
     double* __restrict oh = out.h;
     double* __restrict oqn = out.qn;
     double* __restrict oqt = out.qt;
@@ -195,11 +198,13 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
         const double ul = un[i - off], vl = ut[i - off], ur = un[i], vr = ut[i];
         const FaceFlux w =
             waf_lane<L>(hll, qn[i - 2 * off], ut[i - 2 * off], hl, qn[i - off], ul, vl, hr, qn[i],
-                        ur, vr, hrr, qn[i + off], ut[i + off], c[i - off], c[i], h_dry, dt_over_dx);
+                        ur, vr, hrr, qn[i + off], ut[i + off], c[i - off], c[i], a[i - off],
+                        a[i], h_dry, dt_over_dx);
         if constexpr (Fronts) {
             // At a wet/dry front (a stencil cell thinner than h_dry) the first-order flux.
             const bool front = (hll < h_dry) | (hl < h_dry) | (hr < h_dry) | (hrr < h_dry);
-            const FaceFlux g = hllc_lane(hl, ul, vl, hr, ur, vr, c[i - off], c[i], h_dry);
+            const FaceFlux g =
+                hllc_lane(hl, ul, vl, hr, ur, vr, c[i - off], c[i], a[i - off], a[i], h_dry);
             oh[i] = front ? g.h : w.h;
             oqn[i] = front ? g.qn : w.qn;
             oqt[i] = front ? g.qt : w.qt;
@@ -231,6 +236,7 @@ AVALANCHE_INLINE void waf_row_dispatch(const FaceRowInput& in, const FaceRowOutp
         sub.c += a;
         sub.un += a;
         sub.ut += a;
+        sub.a += a;
         const FaceRowOutput to{out.h + a, out.qn + a, out.qt + a};
         if (front)
             waf_row<L, true>(sub, to, b - a, h_dry, dt_over_dx);
@@ -259,6 +265,15 @@ AVALANCHE_SIMD_CLONES void waf_row_minmod(const FaceRowInput& in, const FaceRowO
 AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOutput& out, int n,
                                         double h_dry) {
     hllc_row(in, out, n, h_dry);
+}
+
+AVALANCHE_SIMD_CLONES void celerity_row_any(const double* __restrict h, const double* __restrict c,
+                                           double h_dry, double* __restrict a, int n) {
+#pragma omp simd
+    for (int i = 0; i < n; ++i) {
+        const bool wet = (h[i] >= h_dry) & (h[i] > 0.0);
+        a[i] = std::sqrt(c[i] * (wet ? h[i] : 0.0));  // hllc_flux's sqrt(c h) of a side
+    }
 }
 
 AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRowOutput& flux,
@@ -291,6 +306,10 @@ AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRo
 }
 
 }  // namespace
+
+void celerity_row(const double* h, const double* c, double h_dry, double* a, int n) noexcept {
+    celerity_row_any(h, c, h_dry, a, n);
+}
 
 void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio,
                    const FaceRowOutput& out, int n) noexcept {

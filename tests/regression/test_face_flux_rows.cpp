@@ -5,7 +5,9 @@
 // not multiples of any vector width. The states mix empty, thin (below h_dry) and wet
 // cells, equal neighbours (flat jumps: the limiter's special cases), and sub- and
 // supercritical flow in both directions, so every selection in the kernels is taken.
-// The kernels get the cells' velocity quotients q / h as arrays, as the stepper passes them.
+// The kernels get the cells' velocity quotients q / h and celerities sqrt(c h) as arrays,
+// as the stepper passes them (the celerities from celerity_row, itself checked here).
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,6 +31,7 @@ struct Block {
     int width, rows;
     std::vector<double> h, qn, qt, c;
     std::vector<double> un, ut;  // the quotients qn / h, qt / h, as the stepper passes them
+    std::vector<double> a;       // the celerities, from celerity_row
 };
 
 // all_wet: every cell at least h_dry thick (rows without a front take the kernels'
@@ -36,7 +39,7 @@ struct Block {
 Block random_block(std::mt19937_64& rng, int width, int rows, double h_dry, bool all_wet = false) {
     std::uniform_real_distribution<double> depth(0.0, 5.0), speed(-40.0, 40.0), coeff(0.1, 12.0),
         unit(0.0, 1.0);
-    Block b{width, rows, {}, {}, {}, {}, {}, {}};
+    Block b{width, rows, {}, {}, {}, {}, {}, {}, {}};
     const std::size_t n = static_cast<std::size_t>(width) * (rows + 4);
     b.h.resize(n);
     b.qn.resize(n);
@@ -65,6 +68,8 @@ Block random_block(std::mt19937_64& rng, int width, int rows, double h_dry, bool
         b.un[k] = b.qn[k] / b.h[k];
         b.ut[k] = b.qt[k] / b.h[k];
     }
+    b.a.resize(n);
+    celerity_row(b.h.data(), b.c.data(), h_dry, b.a.data(), static_cast<int>(n));
     return b;
 }
 
@@ -84,6 +89,7 @@ long compare(const Block& b, RowKernel row, Reference reference) {
                             off};
             in.un = b.un.data() + k0;
             in.ut = b.ut.data() + k0;
+            in.a = b.a.data() + k0;
             const FaceRowOutput out{fh.data() + k0, fq.data() + k0, ft.data() + k0};
             row(in, out, n);
             for (std::ptrdiff_t k = k0; k < k0 + n; ++k) {
@@ -103,6 +109,20 @@ long compare(const Block& b, RowKernel row, Reference reference) {
 }
 
 }  // namespace
+
+TEST(FaceFluxRows, CelerityRowIsTheScalarCelerityOfEachSide) {
+    std::mt19937_64 rng(20261208);
+    const double h_dry = 1e-3;
+    const Block b = random_block(rng, 53, 9, h_dry);
+    long dry = 0;
+    for (std::size_t k = 0; k < b.h.size(); ++k) {
+        // hllc_flux (riemann_hllc.hpp): a side thinner than h_dry counts as empty.
+        const double hh = b.h[k] >= h_dry && b.h[k] > 0.0 ? b.h[k] : 0.0;
+        dry += hh == 0.0;
+        ASSERT_TRUE(same_bits(std::sqrt(b.c[k] * hh), b.a[k])) << "cell " << k;
+    }
+    EXPECT_GT(dry, 50);
+}
 
 TEST(FaceFluxRows, FirstOrderRowIsBitwiseTheScalarHllcFlux) {
     std::mt19937_64 rng(20261201);

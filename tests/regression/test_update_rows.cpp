@@ -248,10 +248,10 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
                                   col0(nt, 1),
                                   metric ? col0(sx, 1) : nullptr,
                                   metric ? col0(sy, 1) : nullptr};
-        std::vector<double> out_v(7 * static_cast<std::size_t>(w), -7.0);
+        std::vector<double> out_v(9 * static_cast<std::size_t>(w), -7.0);
         const auto out_at = [&](int a) { return out_v.data() + a * w + ng; };
-        const PressureRowOutput out{out_at(0), out_at(1), out_at(2), out_at(3),
-                                    out_at(4), out_at(5), out_at(6)};
+        const PressureRowOutput out{out_at(0), out_at(1), out_at(2), out_at(3), out_at(4),
+                                    out_at(5), out_at(6), out_at(7), out_at(8)};
         const int lo = -ng, hi = w - ng - 1;
         pressure_row(in, out, PressureRowParams{kc, k_max, h_min, isotropic}, lo, hi + 1, lo, hi);
         // The reference: update_pressure_coefficients' loop body.
@@ -273,7 +273,8 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
                 cx = kc.kx(x_active) * px.v[k];
                 cy = kc.ky(x_active, y_active) * py.v[k];
             }
-            double ref[7] = {cx, cy, kNoBound, -kNoBound, kNoBound, -kNoBound, 0.0};
+            // The last two: the celerities hllc_flux takes, sqrt(c h) of a wet side, 0 of a dry one.
+            double ref[9] = {cx, cy, kNoBound, -kNoBound, kNoBound, -kNoBound, 0.0, 0.0, 0.0};
             const double hh = h.v[k];
             if (hh >= h_min && hh > 0.0) {
                 const double u = hu.v[k] / hh, v = hv.v[k] / hh;
@@ -288,8 +289,10 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
                     speed2 += ww * ww;
                 }
                 ref[6] = std::sqrt(speed2) + 2.0 * std::sqrt(k_max * gn.v[k] * hh * nt.v[k]);
+                ref[7] = std::sqrt(cx * hh);
+                ref[8] = std::sqrt(cy * hh);
             }
-            for (int a = 0; a < 7; ++a)
+            for (int a = 0; a < 9; ++a)
                 ASSERT_TRUE(same_bits(ref[a], out_at(a)[i]))
                     << "trial " << trial << " column " << i << " output " << a << ": scalar "
                     << ref[a] << " row " << out_at(a)[i];

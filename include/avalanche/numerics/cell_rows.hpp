@@ -61,6 +61,10 @@ inline constexpr double kNoVelocityBound = std::numeric_limits<double>::max();
 // Per cell: the pressure coefficients k p and the invariant bounds of the update.
 struct PressureRowOutput {
     double *cx, *cy, *u_lo, *u_hi, *v_lo, *v_hi, *speed_hi;
+    // The celerities sqrt(cx h), sqrt(cy h) of cells at least h_min thick, 0 on the
+    // others: celerity_row's values (face_flux_rows.hpp) for the first-order faces on
+    // this state, taken from the bounds' square roots.
+    double *ax, *ay;
 };
 
 struct PressureRowParams {

@@ -34,6 +34,10 @@ struct FaceRowInput {
     // from them (and qn for the WAF jumps), not by predictor_row.
     const double* un = nullptr;
     const double* ut = nullptr;
+    // The celerity sqrt(c h) of every cell at least h_dry thick, 0 on the others
+    // (celerity_row); required by the flux kernels, which would otherwise take two
+    // square roots per face for what is one per cell.
+    const double* a = nullptr;
 };
 
 struct FaceRowOutput {
@@ -45,6 +49,10 @@ struct FaceRowOutput {
     double* un = nullptr;
     double* ut = nullptr;
 };
+
+// The celerity a = sqrt(c h) of n cells, 0 where h < h_dry or h <= 0: the values
+// hllc_flux and waf_face_flux take per side.
+void celerity_row(const double* h, const double* c, double h_dry, double* a, int n) noexcept;
 
 // First-order HLLC flux, bitwise hllc_flux(ql, qr, c_l, c_r, h_dry), of n faces.
 void hllc_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, double h_dry) noexcept;

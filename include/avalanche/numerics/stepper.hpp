@@ -83,14 +83,17 @@ class Stepper {
         int ng = 0, base = 0, rows = 0;
         std::vector<double> su, sv;  // the state's velocity quotients hu / h, hv / h
         std::vector<double> cx, cy;  // k_x p_x and k_y p_y per cell
+        std::vector<double> ax, ay;  // celerities sqrt(cx h), sqrt(cy h) (0 on thin cells)
         std::vector<double> u_lo, u_hi, v_lo, v_hi, speed_hi;  // invariant bounds (u -/+ 2a_x, ...)
         std::vector<double> yfo_h, yfo_qn, yfo_qt;     // first-order y-faces of the y-predictor
         std::vector<double> pred_h, pred_hu, pred_hv;  // state advanced by the x-predictor
         std::vector<double> pred_u, pred_v;            // and its velocity quotients
+        std::vector<double> pred_a;                    // and its celerity in y, sqrt(cy h)
         std::vector<double> fx_h, fx_hu, fx_hv;        // x-face fluxes; face (i, r) left of cell i
         std::vector<double> fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
         std::vector<double> factor;                    // donor factors
-        std::vector<double> row_h, row_hu, row_hv, row_u, row_v;  // one row: a predictor's scratch
+        std::vector<double> row_h, row_hu, row_hv, row_u, row_v,
+            row_a;  // one row: the y-predictor's scratch (row_a: celerity in x)
         // Rows computed so far of each stage (end, exclusive), valid while the next
         // strip starts at carried_for.
         int carried_for = 0;
