@@ -178,8 +178,11 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
 template <bool Isotropic, bool Metric>
 AVALANCHE_SIMD_CLONES void pressure_row_clone(const PressureRowInput& in,
                                               const PressureRowOutput& out,
-                                              const PressureRowParams& p, int i0, int i1, int lo,
+                                              const PressureRowParams& params, int i0, int i1, int lo,
                                               int hi) {
+    // A local copy: the stores through out could alias the caller's parameters, and
+    // GCC then reloads them per cell and leaves the loop scalar (it was 18 % of a step).
+    const PressureRowParams p = params;
     // Central differences along the row, clamped at the padding columns lo and hi.
     int a = i0, e = i1;
     if (a < e && a == lo) {
