@@ -78,6 +78,20 @@ AVALANCHE_INLINE double ratio_of(double d_upwind, double d_local, double tiny) {
     return std::abs(d_local) <= tiny ? flat : r;
 }
 
+// limiter_psi_of_jumps (limiters.hpp) as selections.
+template <Limiter L>
+AVALANCHE_INLINE double psi_of_jumps(double d_upwind, double d_local, double tiny) {
+    if constexpr (L == Limiter::van_leer) {
+        const double flat = std::abs(d_upwind) <= tiny ? 1.0 : 0.0;
+        const bool positive =
+            ((d_upwind > 0.0) & (d_local > 0.0)) | ((d_upwind < 0.0) & (d_local < 0.0));
+        const double p = 2.0 * d_upwind / (d_local + d_upwind);
+        return std::abs(d_local) <= tiny ? flat : (positive ? p : 0.0);
+    } else {
+        return psi_of<L>(ratio_of(d_upwind, d_local, tiny));
+    }
+}
+
 // The WAF weight 1/2 sign(c) A of one wave (waf_flux, riemann_hllc.hpp).
 AVALANCHE_INLINE double waf_weight(double s, double dt_over_dx, double psi) {
     const double c = std::clamp(s * dt_over_dx, -1.0, 1.0);
@@ -116,20 +130,19 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, doubl
     const double h_bar = 0.5 * (h_l + h_r);
     const double u_bar = 0.5 * (ul + ur);
     const double a_bar = std::sqrt(0.5 * (c_l + c_r) * h_bar);
-    const double tiny_alpha = kFlat * h_bar;
-    const double up_l = u_bar + a_bar, up_r = u_bar - a_bar, two_a = 2.0 * a_bar;
-    // Outer waves: strengths alpha_1 = ((u + a) dh - dq) / 2a, alpha_3 = (dq - (u - a) dh) / 2a.
+    const double tiny_alpha = kFlat * h_bar * (2.0 * a_bar);
+    const double up_l = u_bar + a_bar, up_r = u_bar - a_bar;
+    // Outer waves: strengths 2a alpha_1 = (u + a) dh - dq, 2a alpha_3 = dq - (u - a) dh
+    // (the limiter reads their ratio; waf_face.hpp).
     const double dh_loc = h_r - h_l, dq_loc = qn_r - qn_l;
     const double dh_lup = h_l - h_ll, dq_lup = qn_l - qn_ll;  // the face upwind on the left
     const double dh_rup = h_rr - h_r, dq_rup = qn_rr - qn_r;  // the face upwind on the right
     const bool from_left_1 = s_l >= 0.0;
-    const double loc_1 = (up_l * dh_loc - dq_loc) / two_a;
-    // The upwind strengths: the numerator selected first, one division (the same
-    // quotient as dividing both and selecting).
-    const double up_1 = (from_left_1 ? up_l * dh_lup - dq_lup : up_l * dh_rup - dq_rup) / two_a;
+    const double loc_1 = up_l * dh_loc - dq_loc;
+    const double up_1 = from_left_1 ? up_l * dh_lup - dq_lup : up_l * dh_rup - dq_rup;
     const bool from_left_3 = s_r >= 0.0;
-    const double loc_3 = (dq_loc - up_r * dh_loc) / two_a;
-    const double up_3 = (from_left_3 ? dq_lup - up_r * dh_lup : dq_rup - up_r * dh_rup) / two_a;
+    const double loc_3 = dq_loc - up_r * dh_loc;
+    const double up_3 = from_left_3 ? dq_lup - up_r * dh_lup : dq_rup - up_r * dh_rup;
     // Shear wave: the jump of the transverse velocity.
     const bool from_left_2 = s_star >= 0.0;
     // The upwind cell's transverse velocity (of LL or RR).
@@ -139,9 +152,9 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, doubl
     const double dv_up = from_left_2 ? vl - v_up : v_up - vr;
     const double tiny_v = kFlat * std::max(std::abs(vl), std::abs(vr));
 
-    const double psi1 = psi_of<L>(ratio_of(up_1, loc_1, tiny_alpha));
-    const double psi2 = psi_of<L>(ratio_of(dv_up, dv_loc, tiny_v));
-    const double psi3 = psi_of<L>(ratio_of(up_3, loc_3, tiny_alpha));
+    const double psi1 = psi_of_jumps<L>(up_1, loc_1, tiny_alpha);
+    const double psi2 = psi_of_jumps<L>(dv_up, dv_loc, tiny_v);
+    const double psi3 = psi_of_jumps<L>(up_3, loc_3, tiny_alpha);
     const double w[3] = {waf_weight(s_l, dt_over_dx, psi1), waf_weight(s_star, dt_over_dx, psi2),
                          waf_weight(s_r, dt_over_dx, psi3)};
     return {waf_component(f0.h, fh, fh, f3.h, w), waf_component(f0.qn, fq, fq, f3.qn, w),

@@ -106,3 +106,28 @@ TEST(Limiters, TvdRegionAndSymmetry) {
         }
     }
 }
+
+// The WAF kernels take psi from the two jumps (limiter_psi_of_jumps): for every
+// limiter it must be psi(jump_ratio(d_up, d_loc, tiny)) up to the round-off of the
+// rearranged van Leer formula, with the flat and extremum cases exact.
+TEST(Limiters, PsiOfJumpsIsPsiOfTheirRatio) {
+    const double tiny = 1e-9;
+    const double jumps[] = {-3.0, -0.7, -1e-3, -2e-9, -1e-12, 0.0, 1e-12, 5e-10, 1e-3, 0.25, 1.0, 40.0};
+    for (Limiter l : {Limiter::superbee, Limiter::van_leer, Limiter::van_albada, Limiter::minmod}) {
+        for (double up : jumps) {
+            for (double loc : jumps) {
+                const double ref = limiter_psi(l, jump_ratio(up, loc, tiny));
+                const double psi = limiter_psi_of_jumps(l, up, loc, tiny);
+                if (std::abs(loc) <= tiny || ref == 0.0) {
+                    EXPECT_EQ(psi, ref) << "up " << up << " loc " << loc;  // flat or extremum: exact
+                } else {
+                    EXPECT_NEAR(psi, ref, 4e-16 * ref) << "up " << up << " loc " << loc;
+                }
+                EXPECT_GE(psi, 0.0);
+                EXPECT_LE(psi, 2.0);
+            }
+        }
+    }
+    // Where r = d_up / d_loc overflows, 2r / (1 + r) is inf / inf; the jump form is not.
+    EXPECT_NEAR(limiter_psi_of_jumps(Limiter::van_leer, 1e300, 1e-10, 1e-12), 2.0, 1e-15);
+}

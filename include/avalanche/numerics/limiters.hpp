@@ -28,4 +28,16 @@ namespace avalanche {
     return d_upwind / d_local;
 }
 
+// limiter_psi(l, jump_ratio(d_upwind, d_local, tiny)) from the two jumps. Van Leer's
+// 2r / (1 + r) is taken as 2 d_upwind / (d_local + d_upwind): one division instead of
+// two (the same value up to round-off, and no inf / inf where r overflows); the
+// other limiters go through r.
+[[nodiscard]] inline double limiter_psi_of_jumps(Limiter l, double d_upwind, double d_local,
+                                                 double tiny) noexcept {
+    if (l != Limiter::van_leer) return limiter_psi(l, jump_ratio(d_upwind, d_local, tiny));
+    if (std::abs(d_local) <= tiny) return std::abs(d_upwind) <= tiny ? 1.0 : 0.0;  // psi(1), psi(0)
+    const bool positive = (d_upwind > 0.0 && d_local > 0.0) || (d_upwind < 0.0 && d_local < 0.0);
+    return positive ? 2.0 * d_upwind / (d_local + d_upwind) : 0.0;
+}
+
 }  // namespace avalanche

@@ -47,13 +47,15 @@ inline double velocity_or_zero(const Conserved& q, double h_dry) {
     const double h_bar = 0.5 * (ql.h + qr.h);
     const double u_bar = 0.5 * (fan.ul + fan.ur);  // both wet here: q_n / h
     const double a_bar = std::sqrt(0.5 * (c_l + c_r) * h_bar);
+    // The limiter reads only the ratio of two strengths of a wave, so their common
+    // factor 1 / 2a is left out: 2a alpha_1 and 2a alpha_3 (two divisions per wave
+    // fewer; the same ratio up to round-off).
     const auto strength = [&](int wave, double dh, double dq) {
-        return wave == 0 ? ((u_bar + a_bar) * dh - dq) / (2.0 * a_bar)
-                         : (dq - (u_bar - a_bar) * dh) / (2.0 * a_bar);
+        return wave == 0 ? (u_bar + a_bar) * dh - dq : dq - (u_bar - a_bar) * dh;
     };
     // Strengths below 1e-12 of the depth count as flat (relative, so the
-    // choice does not depend on units or frame).
-    const double tiny_alpha = kFlat * h_bar;
+    // choice does not depend on units or frame): 2a alpha below 2a 1e-12 h_bar.
+    const double tiny_alpha = kFlat * h_bar * (2.0 * a_bar);
     const double s_wave[3] = {fan.s_l, fan.s_star, fan.s_r};
     double psi[3];
     for (int m = 0; m < 3; ++m) {
@@ -64,12 +66,12 @@ inline double velocity_or_zero(const Conserved& q, double h_dry) {
             const double dv_up = from_left ? fan.vl - detail::velocity_or_zero(qll, h_dry)
                                            : detail::velocity_or_zero(qrr, h_dry) - fan.vr;
             const double tiny_v = kFlat * std::max(std::abs(fan.vl), std::abs(fan.vr));
-            psi[m] = limiter_psi(lim, jump_ratio(dv_up, dv_loc, tiny_v));
+            psi[m] = limiter_psi_of_jumps(lim, dv_up, dv_loc, tiny_v);
         } else {
             const double local = strength(m, qr.h - ql.h, qr.qn - ql.qn);
             const double upwind = from_left ? strength(m, ql.h - qll.h, ql.qn - qll.qn)
                                             : strength(m, qrr.h - qr.h, qrr.qn - qr.qn);
-            psi[m] = limiter_psi(lim, jump_ratio(upwind, local, tiny_alpha));
+            psi[m] = limiter_psi_of_jumps(lim, upwind, local, tiny_alpha);
         }
     }
     return waf_flux(fan, dt_dx, psi);
