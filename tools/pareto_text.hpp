@@ -37,8 +37,11 @@ inline constexpr const char* kPresetsNote = R"(
 The presets (`--quality`, include/avalanche/app/quality_preset.hpp) are stated above on
 the chute with a 0.5 m base cell: `draft` doubles the cell size and the Courant number,
 `standard` is the default (the paper's Courant number 0.2), `fine` halves the cell size
-at Courant 0.4. On the chute, draft costs a tenth of standard for 1.7x its deposit error
-(runout within a cell of 1 m); fine costs 3.3x for 20 % less deposit error. The chute's
+at Courant 0.4. On the chute, draft costs about a tenth of standard for 1.7x its deposit
+error (runout within a cell of 1 m); fine costs 2.8x for 13 % less deposit error (20 % in
+the study before the limiter's arithmetic was rearranged on 2026-12-01: the chute's
+deposit error moves by several per cent with round-off, docs/numerics.md, "Symmetry and
+determinism"). The chute's
 deposit converges slowly (the stopping fronts and the shock where the tail runs into the
 deposit are first order), so on that problem refinement buys less than on the smooth
 similarity solution, where halving the cell at Courant 0.4 cuts the error 3 to 3.7x. WAF/van Leer at Courant 0.4 lies on the error/cost front at every cell

@@ -9,8 +9,8 @@ namespace avalanche {
 // all three problems (WAF's numerical diffusion falls as the Courant number rises), so
 //   draft:    twice the cell size at Courant 0.4: about a tenth of the standard cost;
 //   standard: the defaults (the paper's scheme, WAF/van Leer at Courant 0.2);
-//   fine:     half the cell size at Courant 0.4: on the chute 20 % less deposit error
-//             than standard for 3.3 times its cost (at Courant 0.2 it would cost six
+//   fine:     half the cell size at Courant 0.4: on the chute 13 % less deposit error
+//             than standard for 2.8 times its cost (at Courant 0.2 it would cost six
 //             times and be less accurate).
 QualityPreset quality_preset(Quality q) {
     switch (q) {
