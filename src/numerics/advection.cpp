@@ -13,8 +13,11 @@
 // next (StripBuffers::carry_rows); only the first strip of its block computes them
 // afresh, with the same inputs and expressions, so every value is the one the
 // whole-grid passes computed and the result does not depend on the strip height or
-// the thread count. The updated state is written to a second buffer (the neighbouring
-// strips still read the old one) and copied back when all strips are done.
+// the thread count. A strip's updated rows go straight into the state: after the
+// update nothing of the strip's own rows is read again, by it or by the thread's next
+// strip (which reads the stage rows it is handed). Only the first and last strips of
+// a block, whose rows another thread's strip reads afresh, keep theirs in the
+// thread's buffers until every block is done (advect()).
 #include <omp.h>
 
 #include <algorithm>
@@ -39,12 +42,16 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity
     v_hi.assign(n, -kNoVelocityBound);
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);
+    for (WaitingRows& wr : waiting)
+        for (auto* a : {&wr.h, &wr.hu, &wr.hv})
+            a->assign(static_cast<std::size_t>(stride) * static_cast<std::size_t>(kStripRows), 0.0);
 }
 
 std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
     return {&su,     &sv,     &cx,     &cy,     &ax,     &ay,    &u_lo,  &u_hi,  &v_lo,
             &v_hi,   &speed_hi, &yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &pred_u,
-            &pred_v, &pred_a, &fx_h,  &fx_hu,  &fx_hv,  &fy_h,   &fy_hu,   &fy_hv,   &factor};
+            &pred_v, &pred_a, &fx_h,  &fx_hu,  &fx_hv,  &fy_h,   &fy_hu,   &fy_hv,   &factor,
+            &out_h,  &out_hu, &out_hv};
 }
 
 void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
@@ -112,7 +119,8 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
 
 // ---------------------------------------------------------------- one strip
 
-void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffers& w) {
+void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
+                           int wait_slot) {
     const ActiveBox b = box_;
     const int ng = kGhostLayers, nx = grid_.nx, ny = grid_.ny;
     const bool waf = numerics_.scheme == Scheme::waf;
@@ -323,7 +331,7 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
     w.fac_end = std::max(w.fac_end, Je + 1);
 
     // 5. Conservative update, U -= tau/dx dF + tau/dy dG (Wang & Li 2017 eq. 5), with
-    // the scaled fluxes, into next_. Each face is scaled by its donor's factor where it
+    // the scaled fluxes, into the strip's out rows (copied to `to` at the end). Each face is scaled by its donor's factor where it
     // is used, so both cells of a face compute the same product (x * 1 == x exactly
     // for the unscaled faces). A zero mass flux has no donor: its momentum (the
     // pressure of a wall face) passes unscaled.
@@ -344,8 +352,8 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
                                 terrain_.elevation.raw().data() + kf,
                                 metric ? terrain_.sx.raw().data() + kf : nullptr,
                                 metric ? terrain_.sy.raw().data() + kf : nullptr};
-        update_row(in, up, next_.h.raw().data() + kf, next_.hu.raw().data() + kf,
-                   next_.hv.raw().data() + kf, b.i0, b.i1);
+        update_row(in, up, w.out_h.data() + kw, w.out_hu.data() + kw, w.out_hv.data() + kw, b.i0,
+                   b.i1);
     }
 
     // 6. Volume through the open edges, after scaling, per boundary face (summed in
@@ -364,6 +372,23 @@ void Stepper::advect_strip(const State& s, double tau, int J, int Je, StripBuffe
         for (int i = b.i0; i < b.i1; ++i)
             edge_outflow_[3][i] = outflow(fyh, w.k(i, ny), st, 1.0) * tau * grid_.dx;
     w.carried_for = Je;
+
+    // 7. The updated rows. Every stage above is done with rows [J, Je) of s, and the
+    // thread's next strip reads none of them (it reads the stage rows it is handed), so
+    // they can go into s at once, unless another thread's strip reads them (advect()).
+    const std::size_t width = static_cast<std::size_t>(b.i1 - b.i0);
+    StripBuffers::WaitingRows* wait = wait_slot >= 0 ? &w.waiting[wait_slot] : nullptr;
+    if (wait) {
+        wait->j0 = J;
+        wait->j1 = Je;
+    }
+    for (int r = J; r < Je; ++r) {
+        const std::ptrdiff_t kw = w.k(b.i0, r);
+        const std::ptrdiff_t kt = static_cast<std::ptrdiff_t>(r - J) * st + ng + b.i0;
+        std::copy_n(w.out_h.data() + kw, width, wait ? wait->h.data() + kt : s.h.row(r) + b.i0);
+        std::copy_n(w.out_hu.data() + kw, width, wait ? wait->hu.data() + kt : s.hu.row(r) + b.i0);
+        std::copy_n(w.out_hv.data() + kw, width, wait ? wait->hv.data() + kt : s.hv.row(r) + b.i0);
+    }
 }
 
 // ---------------------------------------------------------------- the operator
@@ -383,12 +408,29 @@ void Stepper::advect(State& s, double tau) {
         if (w.rows == 0) w.allocate(s.h.stride(), kStripRows + 8);
         w.carried_for = std::numeric_limits<int>::min();  // a new state: nothing carries over
     }
+    // Each thread takes a block of consecutive strips. Its first and last strips share
+    // rows with the neighbouring blocks, whose strips read the old state there: their
+    // updated rows wait in the thread's buffers until every block is done. The other
+    // strips write theirs into s at once (advect_strip, step 7), so no second state
+    // is kept.
     const int strips = (b.j1 - b.j0 + kStripRows - 1) / kStripRows;
-#pragma omp parallel for schedule(static) if (threaded_)
-    for (int t = 0; t < strips; ++t) {
-        const int j = b.j0 + t * kStripRows;
-        advect_strip(s, tau, j, std::min(j + kStripRows, b.j1),
-                     strips_[static_cast<std::size_t>(omp_get_thread_num())]);
+    const auto block_of = [strips](int t, int n) {  // strips [first, last) of thread t of n
+        return std::pair<int, int>{strips * t / n, strips * (t + 1) / n};
+    };
+    int team = 1;
+#pragma omp parallel if (threaded_)
+    {
+        const int n = omp_get_num_threads(), t = omp_get_thread_num();
+#pragma omp single
+        team = n;
+        const auto [first, last] = block_of(t, n);
+        StripBuffers& w = strips_[static_cast<std::size_t>(t)];
+        w.waiting[0].j1 = w.waiting[1].j1 = w.waiting[0].j0 = w.waiting[1].j0 = 0;
+        for (int k = first; k < last; ++k) {
+            const int j = b.j0 + k * kStripRows;
+            const int slot = k == first && t > 0 ? 0 : (k == last - 1 && t < n - 1 ? 1 : -1);
+            advect_strip(s, tau, j, std::min(j + kStripRows, b.j1), w, slot);
+        }
     }
     // Volume through the open edges: west, east, south, north, in that order.
     double out = 0.0;
@@ -401,13 +443,19 @@ void Stepper::advect(State& s, double tau) {
     if (b.j1 == grid_.ny)
         for (int i = b.i0; i < b.i1; ++i) out += edge_outflow_[3][i];
     outflow_volume_ += out;
-    // The updated box replaces the state.
+    // The rows that waited.
     const std::size_t w = static_cast<std::size_t>(b.i1 - b.i0);
-#pragma omp parallel for schedule(static) if (threaded_)
-    for (int j = b.j0; j < b.j1; ++j) {
-        std::copy_n(next_.h.row(j) + b.i0, w, s.h.row(j) + b.i0);
-        std::copy_n(next_.hu.row(j) + b.i0, w, s.hu.row(j) + b.i0);
-        std::copy_n(next_.hv.row(j) + b.i0, w, s.hv.row(j) + b.i0);
+    for (int t = 0; t < team; ++t) {
+        for (const StripBuffers::WaitingRows& wr : strips_[static_cast<std::size_t>(t)].waiting) {
+            for (int j = wr.j0; j < wr.j1; ++j) {
+                const std::size_t k = static_cast<std::size_t>(j - wr.j0) *
+                                          static_cast<std::size_t>(s.h.stride()) +
+                                      static_cast<std::size_t>(kGhostLayers + b.i0);
+                std::copy_n(wr.h.data() + k, w, s.h.row(j) + b.i0);
+                std::copy_n(wr.hu.data() + k, w, s.hu.row(j) + b.i0);
+                std::copy_n(wr.hv.data() + k, w, s.hv.row(j) + b.i0);
+            }
+        }
     }
     fill_ghosts_near(s, box_);
     thin_layer_velocities(s);

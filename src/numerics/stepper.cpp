@@ -19,7 +19,6 @@ Stepper::Stepper(const Grid& grid, const TerrainFields& terrain, const MaterialP
       k_(earth_pressure_coefficients(material)),
       tan_delta_(material.tan_delta()),
       h_min_(h_min),
-      next_(grid),
       k_max_(std::max({k_.kx_active, k_.kx_passive, k_.ky_given_kx_active_active, k_.ky_given_kx_active_passive,
                        k_.ky_given_kx_passive_active, k_.ky_given_kx_passive_passive})),
       energy_budget_(std::numeric_limits<double>::infinity()),

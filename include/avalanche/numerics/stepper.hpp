@@ -92,6 +92,14 @@ class Stepper {
         std::vector<double> fx_h, fx_hu, fx_hv;        // x-face fluxes; face (i, r) left of cell i
         std::vector<double> fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
         std::vector<double> factor;                    // donor factors
+        std::vector<double> out_h, out_hu, out_hv;     // the updated rows of the strip
+        // The updated rows of the block's first and last strips, which must wait until
+        // every block is done (advect()): rows [j0, j1), row j0 first, column 0 at ng.
+        struct WaitingRows {
+            int j0 = 0, j1 = 0;
+            std::vector<double> h, hu, hv;
+        };
+        WaitingRows waiting[2];
         std::vector<double> row_h, row_hu, row_hv, row_u, row_v,
             row_a;  // one row: the y-predictor's scratch (row_a: celerity in x)
         // Rows computed so far of each stage (end, exclusive), valid while the next
@@ -110,7 +118,10 @@ class Stepper {
 
     void fill_ghosts_near(State& s, const ActiveBox& near) const;
     void pressure_row(const State& s, int r, int ia, int ib, StripBuffers& w) const;
-    void advect_strip(const State& s, double tau, int j_begin, int j_end, StripBuffers& w);
+    // Advects rows [j_begin, j_end) of s; the updated rows go into s itself, or into
+    // w.waiting[wait_slot] when wait_slot is 0 or 1.
+    void advect_strip(State& s, double tau, int j_begin, int j_end, StripBuffers& w,
+                      int wait_slot);
     void thin_layer_velocities(State& s) const;
     void shrink_box_to_wet(const State& s, const ActiveBox& search);
     [[nodiscard]] double energy_budget_in(const State& s, const ActiveBox& wet) const;
@@ -130,7 +141,6 @@ class Stepper {
 
     ActiveBox box_;                     // cells updated this step
     ActiveBox wet_box_;                 // bounding box of cells with h > 0
-    State next_;                        // the state updated by the advection, box only
     std::vector<StripBuffers> strips_;  // one per thread
     // Rows per strip: the stage buffers of a strip (24 arrays of kStripRows + 8 rows)
     // stay in a core's cache for grids up to a few thousand cells wide.
