@@ -64,8 +64,10 @@ class Stepper {
     // microseconds to wake the team, more than the work of a few thousand cells, and
     // on a shared machine a descheduled thread stalls every region (a 0.5 s test took
     // 10 s on two threads). Results do not depend on it. (Simulation's per-step passes
-    // use the same threshold.)
-    static constexpr std::size_t kMinCellsPerThreadedStep = 20000;
+    // use the same threshold.) 4 000 since the strips (a step of 4 000 cells is about
+    // 0.5 ms of work): against 20 000, two threads ran the demo in 8.6-11 s instead of
+    // 15-19 s, the chute 18-20 % and the valley 45-55 % faster (docs/performance.md).
+    static constexpr std::size_t kMinCellsPerThreadedStep = 4000;
 
     // The operators, public for tests of the splitting.
     void advect(State& s, double tau);
