@@ -106,7 +106,7 @@ class StepLimit : public StepObserver {
 };
 
 struct Outcome {
-    double wall = 0.0, construct = 0.0, t = 0.0, mass_error = 0.0, outflow = 0.0;
+    double wall = 0.0, cpu = 0.0, construct = 0.0, t = 0.0, mass_error = 0.0, outflow = 0.0;
     std::uint64_t steps = 0, updates = 0;
     std::string end;
 };
@@ -124,15 +124,18 @@ Outcome run_once(Scene& s, long step_limit) {
     StepLimit limit(step_limit > 0 ? static_cast<std::uint64_t>(step_limit) : UINT64_MAX);
     sim.add_observer(&limit);
     const auto t1 = Clock::now();
+    const double cpu1 = process_cpu_seconds();
     try {
         const RunStatistics st = sim.run();
         o.wall = seconds_since(t1);
+        o.cpu = process_cpu_seconds() - cpu1;
         o.t = st.simulated_time;
         o.steps = st.steps;
         o.end = to_string(st.end_reason);
         o.mass_error = st.relative_mass_error();
     } catch (const StepLimitReached&) {
         o.wall = seconds_since(t1);
+        o.cpu = process_cpu_seconds() - cpu1;
         o.t = limit.t;
         o.steps = static_cast<std::uint64_t>(step_limit);
         o.end = "step_limit";
@@ -153,6 +156,7 @@ RunRecord timed_case(const std::string& case_id, Build build, long step_limit, c
 #ifdef _OPENMP
     r.threads = omp_get_max_threads();
 #endif
+    r.load_average = load_average_1min();
     for (int k = 0; k < opt.repeat; ++k) {
         const auto t0 = Clock::now();
         Scene s = build();
@@ -164,6 +168,7 @@ RunRecord timed_case(const std::string& case_id, Build build, long step_limit, c
         const Outcome o = run_once(s, step_limit);
         if (k == 0) r.setup_seconds = scene_seconds + o.construct;
         r.wall_seconds.push_back(o.wall);
+        r.cpu_seconds.push_back(o.cpu);
         r.simulated_time = o.t;
         r.steps = o.steps;
         r.cell_updates = o.updates;

@@ -2,6 +2,9 @@
 
 #include <sys/resource.h>
 
+#include <cstdlib>
+#include <ctime>
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -31,6 +34,27 @@ double peak_rss_bytes() {
     return static_cast<double>(u.ru_maxrss) * 1024.0;  // Linux reports kilobytes
 }
 
+double process_cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double load_average_1min() {
+    double load[1] = {0.0};
+    return getloadavg(load, 1) == 1 ? load[0] : -1.0;
+}
+
+namespace {
+// CPU time of the repetition with the best wall time, over that wall time.
+double cpu_per_wall(const RunRecord& r) {
+    if (r.wall_seconds.empty() || r.cpu_seconds.size() != r.wall_seconds.size()) return 0.0;
+    const auto best = std::min_element(r.wall_seconds.begin(), r.wall_seconds.end());
+    const std::size_t k = static_cast<std::size_t>(best - r.wall_seconds.begin());
+    return *best > 0.0 ? r.cpu_seconds[k] / *best : 0.0;
+}
+}  // namespace
+
 void print(const RunRecord& r) {
     std::ostringstream walls;
     for (std::size_t k = 0; k < r.wall_seconds.size(); ++k)
@@ -43,7 +67,9 @@ void print(const RunRecord& r) {
               << static_cast<double>(r.cell_updates) << ", " << r.cell_updates_per_second() / 1e6
               << " M/s\n  peak memory " << r.peak_rss_bytes / 1048576.0
               << " MiB = " << r.bytes_per_cell() << " B/cell, mass error " << r.relative_mass_error
-              << ", outflow " << r.outflow_volume << " m^3\n";
+              << ", outflow " << r.outflow_volume << " m^3\n  cpu / wall of the best run "
+              << cpu_per_wall(r) << " (threads " << r.threads << "), load average before "
+              << r.load_average << "\n";
     if (!r.note.empty()) std::cout << "  " << r.note << "\n";
     std::cout << std::flush;
 }
@@ -67,7 +93,11 @@ void append_json(const RunRecord& r, const std::string& path) {
       << ", \"setup_seconds\": " << r.setup_seconds << ", \"wall_seconds\": [";
     for (std::size_t k = 0; k < r.wall_seconds.size(); ++k)
         o << (k ? ", " : "") << r.wall_seconds[k];
-    o << "], \"best_wall_seconds\": " << r.best_wall()
+    o << "], \"cpu_seconds\": [";
+    for (std::size_t k = 0; k < r.cpu_seconds.size(); ++k)
+        o << (k ? ", " : "") << r.cpu_seconds[k];
+    o << "], \"load_average_1min\": " << r.load_average
+      << ", \"best_wall_seconds\": " << r.best_wall()
       << ", \"simulated_time\": " << r.simulated_time << ", \"steps\": " << r.steps
       << ", \"cell_updates\": " << r.cell_updates
       << ", \"cell_updates_per_second\": " << r.cell_updates_per_second()

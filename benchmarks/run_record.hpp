@@ -14,6 +14,13 @@ struct RunRecord {
     int nx = 0, ny = 0;
     double setup_seconds = 0.0;        // terrain, release and Simulation construction
     std::vector<double> wall_seconds;  // of Simulation::run, one per repetition
+    // CPU time of the process (all threads) during each Simulation::run. On one thread
+    // cpu / wall below 1 means the run was descheduled: the machine was busy and the
+    // wall time overstates the cost (a VM's stolen time is not the process's CPU time).
+    // Near 1 does not prove a quiet machine: work on the sibling hardware thread slows
+    // a run without taking its CPU time (docs/performance.md, bench_divider).
+    std::vector<double> cpu_seconds;
+    double load_average = -1.0;  // 1-minute load average before the first repetition
     double simulated_time = 0.0;       // s
     std::uint64_t steps = 0;
     std::uint64_t cell_updates = 0;  // active-box cells x steps (RunStatistics)
@@ -30,6 +37,10 @@ struct RunRecord {
 
 // Peak resident set of the calling process (bytes).
 double peak_rss_bytes();
+// CPU time of the calling process, all threads (s).
+double process_cpu_seconds();
+// The system's 1-minute load average, or -1 where it cannot be read.
+double load_average_1min();
 
 // One human-readable line block on stdout.
 void print(const RunRecord& r);
