@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "avalanche/numerics/energy_cap.hpp"
+#include "avalanche/numerics/face_flux_rows.hpp"
 #include "simd_clones.hpp"
 
 namespace avalanche {
@@ -158,7 +159,8 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
     // (docs/numerics.md, step 8). Dry and thin cells bound nothing.
     const bool wet = (hh >= hmin) & (hh > 0.0);
     const double u = in.u[i], v = in.v[i];  // hu / hh, hv / hh
-    const double cel_x = std::sqrt(cx * (wet ? hh : 0.0)), cel_y = std::sqrt(cy * (wet ? hh : 0.0));
+    // The celerities the first-order faces take (face_flux_rows.hpp), also the bounds' a.
+    const double cel_x = side_celerity(hh, cx, hmin), cel_y = side_celerity(hh, cy, hmin);
     out.ax[i] = cel_x;
     out.ay[i] = cel_y;
     const double ax = 2.0 * cel_x, ay = 2.0 * cel_y;  // used on wet cells only

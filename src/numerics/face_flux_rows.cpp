@@ -283,10 +283,7 @@ AVALANCHE_SIMD_CLONES void hllc_row_any(const FaceRowInput& in, const FaceRowOut
 AVALANCHE_SIMD_CLONES void celerity_row_any(const double* __restrict h, const double* __restrict c,
                                            double h_dry, double* __restrict a, int n) {
 #pragma omp simd
-    for (int i = 0; i < n; ++i) {
-        const bool wet = (h[i] >= h_dry) & (h[i] > 0.0);
-        a[i] = std::sqrt(c[i] * (wet ? h[i] : 0.0));  // hllc_flux's sqrt(c h) of a side
-    }
+    for (int i = 0; i < n; ++i) a[i] = side_celerity(h[i], c[i], h_dry);
 }
 
 AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRowOutput& flux,

@@ -17,6 +17,7 @@
 // The loads of both directions are contiguous in m. Inputs and outputs may live in
 // arrays of different extents (the stepper's strip buffers) with the same stride. The "normal"
 // momentum is hu for x-faces and hv for y-faces (the tangential one the other).
+#include <cmath>
 #include <cstddef>
 
 #include "avalanche/numerics/parameters.hpp"
@@ -50,8 +51,14 @@ struct FaceRowOutput {
     double* ut = nullptr;
 };
 
-// The celerity a = sqrt(c h) of n cells, 0 where h < h_dry or h <= 0: the values
-// hllc_flux and waf_face_flux take per side.
+// The celerity a = sqrt(c h) of a cell as hllc_flux takes it for a face side: a side
+// thinner than h_dry (or empty) counts as dry, a = 0. Inline for the row kernels.
+[[nodiscard]] inline double side_celerity(double h, double c, double h_dry) noexcept {
+    const bool wet = (h >= h_dry) & (h > 0.0);
+    return std::sqrt(c * (wet ? h : 0.0));
+}
+
+// side_celerity of n cells: the values hllc_flux and waf_face_flux take per side.
 void celerity_row(const double* h, const double* c, double h_dry, double* a, int n) noexcept;
 
 // First-order HLLC flux, bitwise hllc_flux(ql, qr, c_l, c_r, h_dry), of n faces.
