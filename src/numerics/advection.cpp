@@ -42,9 +42,11 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity
     v_hi.assign(n, -kNoVelocityBound);
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);
-    for (WaitingRows& wr : waiting)
+    for (WaitingRows& wr : waiting) {
+        wr.stride = stride;
         for (auto* a : {&wr.h, &wr.hu, &wr.hv})
             a->assign(static_cast<std::size_t>(stride) * static_cast<std::size_t>(kStripRows), 0.0);
+    }
 }
 
 std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
@@ -331,10 +333,10 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
     w.fac_end = std::max(w.fac_end, Je + 1);
 
     // 5. Conservative update, U -= tau/dx dF + tau/dy dG (Wang & Li 2017 eq. 5), with
-    // the scaled fluxes, into the strip's out rows (copied to `to` at the end). Each face is scaled by its donor's factor where it
-    // is used, so both cells of a face compute the same product (x * 1 == x exactly
-    // for the unscaled faces). A zero mass flux has no donor: its momentum (the
-    // pressure of a wall face) passes unscaled.
+    // the scaled fluxes, into the strip's out rows (step 7 moves them on). Each face is
+    // scaled by its donor's factor where it is used, so both cells of a face compute the
+    // same product (x * 1 == x exactly for the unscaled faces). A zero mass flux has no
+    // donor: its momentum (the pressure of a wall face) passes unscaled.
     const bool metric = terrain_.has_metric;
     const UpdateRowParams up{rx, ry, st, energy_budget_, numerics_.gravity};
     for (int r = J; r < Je; ++r) {
@@ -384,7 +386,7 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
     }
     for (int r = J; r < Je; ++r) {
         const std::ptrdiff_t kw = w.k(b.i0, r);
-        const std::ptrdiff_t kt = static_cast<std::ptrdiff_t>(r - J) * st + ng + b.i0;
+        const std::ptrdiff_t kt = wait ? wait->at(b.i0, r) : 0;
         std::copy_n(w.out_h.data() + kw, width, wait ? wait->h.data() + kt : s.h.row(r) + b.i0);
         std::copy_n(w.out_hu.data() + kw, width, wait ? wait->hu.data() + kt : s.hu.row(r) + b.i0);
         std::copy_n(w.out_hv.data() + kw, width, wait ? wait->hv.data() + kt : s.hv.row(r) + b.i0);
@@ -448,9 +450,7 @@ void Stepper::advect(State& s, double tau) {
     for (int t = 0; t < team; ++t) {
         for (const StripBuffers::WaitingRows& wr : strips_[static_cast<std::size_t>(t)].waiting) {
             for (int j = wr.j0; j < wr.j1; ++j) {
-                const std::size_t k = static_cast<std::size_t>(j - wr.j0) *
-                                          static_cast<std::size_t>(s.h.stride()) +
-                                      static_cast<std::size_t>(kGhostLayers + b.i0);
+                const std::ptrdiff_t k = wr.at(b.i0, j);
                 std::copy_n(wr.h.data() + k, w, s.h.row(j) + b.i0);
                 std::copy_n(wr.hu.data() + k, w, s.hu.row(j) + b.i0);
                 std::copy_n(wr.hv.data() + k, w, s.hv.row(j) + b.i0);

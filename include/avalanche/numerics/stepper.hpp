@@ -99,7 +99,12 @@ class Stepper {
         // every block is done (advect()): rows [j0, j1), row j0 first, column 0 at ng.
         struct WaitingRows {
             int j0 = 0, j1 = 0;
+            std::ptrdiff_t stride = 0;
             std::vector<double> h, hu, hv;
+            // Index of cell (i, j), j0 <= j < j1, in h, hu, hv.
+            [[nodiscard]] std::ptrdiff_t at(int i, int j) const {
+                return static_cast<std::ptrdiff_t>(j - j0) * stride + kGhostLayers + i;
+            }
         };
         WaitingRows waiting[2];
         std::vector<double> row_h, row_hu, row_hv, row_u, row_v,
