@@ -23,14 +23,23 @@ AVALANCHE_SIMD_CLONES void donor_factor_clone(const FaceFluxRows& f, const doubl
                                               double* __restrict factor, int i0, int i1) {
     const double* __restrict fx = f.fx_h;
     const double* __restrict fy = f.fy_h;
-#pragma omp simd
+    // Few cells would be emptied (thin cells at a front): the vector loop marks them
+    // with a NaN and a scalar pass divides for them alone.
+    const auto outgoing = [&](int i) {
+        return rx * (max0(fx[i + 1]) + max0(-fx[i])) + ry * (max0(fy[i + st]) + max0(-fy[i]));
+    };
+    double n_emptied = 0.0;
+#pragma omp simd reduction(+ : n_emptied)
     for (int i = i0; i < i1; ++i) {
         const double hk = h[i];
-        const double out =
-            rx * (max0(fx[i + 1]) + max0(-fx[i])) + ry * (max0(fy[i + st]) + max0(-fy[i]));
-        const double share = hk / out;  // discarded unless the cell would be emptied
-        factor[i] = hk < h_min ? 0.0 : (out > hk ? share : 1.0);
+        const double out = outgoing(i);
+        const bool emptied = !(hk < h_min) & (out > hk);
+        factor[i] = hk < h_min ? 0.0 : (emptied ? kRedo : 1.0);
+        n_emptied += emptied ? 1.0 : 0.0;
     }
+    if (n_emptied == 0.0) return;
+    for (int i = i0; i < i1; ++i)
+        if (std::isnan(factor[i])) factor[i] = h[i] / outgoing(i);
 }
 
 // The scalar update of one cell, the definition the vector loop follows; used for the
@@ -164,13 +173,14 @@ AVALANCHE_SIMD_CLONES void update_clone(const UpdateRowInput& in, const UpdateRo
             speed2 += w * w;
         }
         const double slow = speed2 > shi[i] * shi[i] ? 0.0 : 1.0;
-        double uc = u, vc = v;  // the energy cap
-        cap_speed_selected(uc, vc, speed2, 2.0 * (budget - g * elev[i]));
-        // A cell outside its own bounds is marked with a NaN momentum for
-        // update_cell (a NaN the update produces is recomputed there as well).
-        const bool redo = empty ? false : own * slow == 0.0;
-        hu_new[i] = redo ? kRedo : (empty ? 0.0 : hn * uc);
-        hv_new[i] = empty ? 0.0 : hn * vc;
+        // The energy cap acts on few cells; its quotient and root are left to
+        // update_cell.
+        const double uncapped = speed2 <= 2.0 * (budget - g * elev[i]) ? 1.0 : 0.0;
+        // A cell outside its own bounds or over the cap is marked with a NaN momentum
+        // for update_cell (a NaN the update produces is recomputed there as well).
+        const bool redo = empty ? false : own * slow * uncapped == 0.0;
+        hu_new[i] = redo ? kRedo : (empty ? 0.0 : hn * u);
+        hv_new[i] = empty ? 0.0 : hn * v;
     }
 }
 
