@@ -109,8 +109,8 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
     hv_new[i] = hn * v;
 }
 
-// The common case of every cell (the velocity within the cell's own bounds) with
-// selections; the other cells are marked for update_cell.
+// The common case of every cell (the velocity within the cell's own bounds and under
+// the energy cap) with selections; the other cells are marked for update_cell.
 template <bool Metric>
 AVALANCHE_SIMD_CLONES void update_clone(const UpdateRowInput& in, const UpdateRowParams& p,
                                         double* __restrict h_new, double* __restrict hu_new,

@@ -3,9 +3,10 @@
 // the vector units like the face kernels (face_flux_rows.hpp): the donor factors of
 // the positivity-preserving flux scaling, and the conservative update with the
 // invariant-domain clamp and the energy cap. Each is the scalar loop body with its
-// branches turned into selections; the update's rare cases (a velocity outside the
-// cell's own invariant bounds, which needs the eight neighbours) are finished by the
-// scalar code afterwards. Results are bitwise those of the scalar loops
+// branches turned into selections; the rare cases (a velocity outside the cell's own
+// invariant bounds, which needs the eight neighbours, or over the energy cap; a cell
+// the step would empty, for the donor factors) are finished by the scalar code
+// afterwards. Results are bitwise those of the scalar loops
 // (tests/regression/test_update_rows.cpp).
 //
 // All pointers address column 0 of the row; the row above is at +stride, the one
