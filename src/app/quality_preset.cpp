@@ -5,18 +5,21 @@
 namespace avalanche {
 
 // The values come from the Pareto study (docs/performance.md, "The speed/accuracy
-// trade"): WAF/van Leer at Courant 0.4 is on the error/cost front at every cell size of
-// all three problems (WAF's numerical diffusion falls as the Courant number rises), so
-//   draft:    twice the cell size at Courant 0.4: about a tenth of the standard cost;
-//   standard: the defaults (the paper's scheme, WAF/van Leer at Courant 0.2);
-//   fine:     half the cell size at Courant 0.4: on the chute 13 % less deposit error
-//             than standard for 2.8 times its cost (at Courant 0.2 it would cost six
-//             times and be less accurate).
+// trade"): WAF/van Leer at Courant 0.4 with the splitting S(dt/2) L(dt) S(dt/2) (one
+// advection per step instead of two) is on the error/cost front at every cell size of
+// all three problems, and beats L S L at Courant 0.4 on the similarity solution and the
+// chute (WAF's numerical diffusion falls as the Courant number of an advection rises), so
+//   draft:    twice the cell size at Courant 0.4, S L S: about a tenth of the standard
+//             cost for 1.4 times its deposit error on the chute;
+//   standard: the defaults (the paper's scheme, WAF/van Leer, L S L at Courant 0.2);
+//   fine:     half the cell size at Courant 0.4, S L S: on the chute half the deposit
+//             error of standard for 3.2 times its cost (L S L at Courant 0.4: 13 % less
+//             error for 2.6 times the cost).
 QualityPreset quality_preset(Quality q) {
     switch (q) {
-        case Quality::draft: return {Scheme::waf, Limiter::van_leer, 0.4, 2.0};
-        case Quality::standard: return {Scheme::waf, Limiter::van_leer, 0.2, 1.0};
-        case Quality::fine: return {Scheme::waf, Limiter::van_leer, 0.4, 0.5};
+        case Quality::draft: return {Scheme::waf, Limiter::van_leer, 0.4, 2.0, Splitting::sls};
+        case Quality::standard: return {Scheme::waf, Limiter::van_leer, 0.2, 1.0, Splitting::lsl};
+        case Quality::fine: return {Scheme::waf, Limiter::van_leer, 0.4, 0.5, Splitting::sls};
     }
     return {};
 }

@@ -62,8 +62,8 @@ void apply_release_overrides(Scenario& s, const ScenarioOverrides& o) {
     if (o.volume) polygons->volume = *o.volume;
 }
 
-// A quality preset (docs/performance.md): scheme, limiter, Courant number, and the
-// cell size scaled -- the scenario's explicit one here, the automatic DEM resolution
+// A quality preset (docs/performance.md): scheme, limiter, Courant number, splitting,
+// and the cell size scaled -- the scenario's explicit one here, the automatic DEM resolution
 // when the DEM is read (Scenario::cell_size_factor). The explicit flags, applied after
 // this, win.
 void apply_quality(Scenario& s, Quality q) {
@@ -71,6 +71,7 @@ void apply_quality(Scenario& s, Quality q) {
     s.numerics.scheme = p.scheme;
     s.numerics.limiter = p.limiter;
     s.numerics.cfl = p.cfl;
+    s.numerics.splitting = p.splitting;
     if (s.cell_size > 0.0)
         s.cell_size *= p.cell_size_factor;
     else

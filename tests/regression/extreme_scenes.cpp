@@ -158,6 +158,7 @@ Scene make_scene(const Case& c) {
     s.material.earth_pressure = c.earth_pressure;
     s.numerics.scheme = c.scheme;
     s.numerics.cfl = c.cfl;
+    s.numerics.splitting = c.splitting;
     s.numerics.h_min = c.h_min;
     build(s, c);
     s.numerics.output_interval = s.numerics.t_end;

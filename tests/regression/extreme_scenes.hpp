@@ -33,6 +33,7 @@ struct Case {
     double h0 = 1.0;     // release thickness, bed-normal (m)
     double h_min = 0.0;  // numerics.h_min (0: automatic, 1e-5 x h0)
     double cfl = 0.2;
+    Splitting splitting = Splitting::lsl;
     int n = 24;       // cells along x (y: kind-dependent)
     double u0 = 0.0;  // initial speed of moving releases (m/s)
     Scheme scheme = Scheme::waf;

@@ -2,8 +2,8 @@
 // `--quality draft|standard|fine`: the speed/accuracy presets of docs/performance.md
 // ("The speed/accuracy trade"). Each is a point chosen from the Pareto study
 // (tools/pareto_study.cpp), which states its error and cost on the paper's chute.
-// A preset sets the scheme, the limiter, the Courant number and scales the scene's
-// cell size (the scenario's numerics.cell_size, or the DEM's resolution when that is
+// A preset sets the scheme, the limiter, the Courant number, the splitting and scales
+// the scene's cell size (the scenario's numerics.cell_size, or the DEM's resolution when that is
 // automatic); flags given explicitly (--scheme, --limiter, --cfl, --cell-size) win.
 #include <string>
 
@@ -18,6 +18,7 @@ struct QualityPreset {
     Limiter limiter = Limiter::van_leer;
     double cfl = 0.2;
     double cell_size_factor = 1.0;  // x the scene's cell size
+    Splitting splitting = Splitting::lsl;
 };
 
 QualityPreset quality_preset(Quality q);
