@@ -60,7 +60,7 @@ void print(const RunRecord& r) {
     for (std::size_t k = 0; k < r.wall_seconds.size(); ++k)
         walls << (k ? ", " : "") << r.wall_seconds[k];
     std::cout << std::setprecision(4) << "case " << r.case_id << " (" << r.scene << ", " << r.scheme
-              << ", " << r.threads << " thread" << (r.threads > 1 ? "s" : "") << "), grid " << r.nx
+              << ", " << r.splitting << ", " << r.threads << " thread" << (r.threads > 1 ? "s" : "") << "), grid " << r.nx
               << " x " << r.ny << "\n  wall " << r.best_wall() << " s (best of [" << walls.str()
               << "]), setup " << r.setup_seconds << " s\n  simulated " << r.simulated_time
               << " s in " << r.steps << " steps, end: " << r.end_reason << "\n  cell updates "
@@ -89,6 +89,7 @@ void append_json(const RunRecord& r, const std::string& path) {
     std::ostringstream o;
     o << std::setprecision(10) << "{\"case\": " << quoted(r.case_id)
       << ", \"scene\": " << quoted(r.scene) << ", \"scheme\": " << quoted(r.scheme)
+      << ", \"splitting\": " << quoted(r.splitting)
       << ", \"threads\": " << r.threads << ", \"nx\": " << r.nx << ", \"ny\": " << r.ny
       << ", \"setup_seconds\": " << r.setup_seconds << ", \"wall_seconds\": [";
     for (std::size_t k = 0; k < r.wall_seconds.size(); ++k)

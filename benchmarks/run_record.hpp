@@ -10,6 +10,7 @@ struct RunRecord {
     std::string case_id;  // "a", "b", "c", "d_crop", "d_full"
     std::string scene;    // scene name
     std::string scheme;   // "waf" or "godunov"
+    std::string splitting = "lsl";  // "lsl" (two advections per step) or "sls" (one)
     int threads = 1;      // omp_get_max_threads() during the run
     int nx = 0, ny = 0;
     double setup_seconds = 0.0;        // terrain, release and Simulation construction
