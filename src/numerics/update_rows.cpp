@@ -111,10 +111,12 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
 
 // The common case of every cell (the velocity within the cell's own bounds and under
 // the energy cap) with selections; the other cells are marked for update_cell.
+// Returns the number of cells marked (a NaN momentum hu_new), so that the caller can
+// skip its search for them when there is none (the common case).
 template <bool Metric>
-AVALANCHE_SIMD_CLONES void update_clone(const UpdateRowInput& in, const UpdateRowParams& p,
-                                        double* __restrict h_new, double* __restrict hu_new,
-                                        double* __restrict hv_new, int i0, int i1) {
+AVALANCHE_SIMD_CLONES double update_clone(const UpdateRowInput& in, const UpdateRowParams& p,
+                                          double* __restrict h_new, double* __restrict hu_new,
+                                          double* __restrict hv_new, int i0, int i1) {
     const std::ptrdiff_t st = p.stride;
     const double rx = p.rx, ry = p.ry, budget = p.energy_budget, g = p.gravity;
     const double* __restrict fxh = in.f.fx_h;
@@ -158,7 +160,8 @@ AVALANCHE_SIMD_CLONES void update_clone(const UpdateRowInput& in, const UpdateRo
     }
     // The velocity bounds as a second pass over the row (one loop with both parts is
     // not vectorised by GCC 12).
-#pragma omp simd
+    double marked = 0.0;
+#pragma omp simd reduction(+ : marked)
     for (int i = i0; i < i1; ++i) {
         const double hn = h_new[i];
         const bool empty = hn <= 0.0;
@@ -179,9 +182,12 @@ AVALANCHE_SIMD_CLONES void update_clone(const UpdateRowInput& in, const UpdateRo
         // A cell outside its own bounds or over the cap is marked with a NaN momentum
         // for update_cell (a NaN the update produces is recomputed there as well).
         const bool redo = empty ? false : own * slow * uncapped == 0.0;
-        hu_new[i] = redo ? kRedo : (empty ? 0.0 : hn * u);
+        const double qu_new = redo ? kRedo : (empty ? 0.0 : hn * u);
+        hu_new[i] = qu_new;
         hv_new[i] = empty ? 0.0 : hn * v;
+        marked += qu_new != qu_new ? 1.0 : 0.0;  // std::isnan, as update_row tests it
     }
+    return marked;
 }
 
 }  // namespace
@@ -194,10 +200,9 @@ void donor_factor_row(const FaceFluxRows& f, const double* h, double rx, double 
 void update_row(const UpdateRowInput& in, const UpdateRowParams& p, double* h_new, double* hu_new,
                 double* hv_new, int i0, int i1) noexcept {
     const bool metric = in.sx != nullptr;
-    if (metric)
-        update_clone<true>(in, p, h_new, hu_new, hv_new, i0, i1);
-    else
-        update_clone<false>(in, p, h_new, hu_new, hv_new, i0, i1);
+    const double marked = metric ? update_clone<true>(in, p, h_new, hu_new, hv_new, i0, i1)
+                                 : update_clone<false>(in, p, h_new, hu_new, hv_new, i0, i1);
+    if (marked == 0.0) return;
     for (int i = i0; i < i1; ++i)
         if (std::isnan(hu_new[i])) update_cell(in, p, metric, h_new, hu_new, hv_new, i);
 }
