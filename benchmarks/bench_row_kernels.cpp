@@ -47,8 +47,8 @@ struct Layer {
     Rows h, hu, hv, u, v, c, a, px, py, gn, nt, sx, sy, ax, ay, elevation;
     Layer() {
         std::mt19937_64 rng(2026);
-        std::uniform_real_distribution<double> depth(0.5, 2.0), speed(-5.0, 15.0),
-            cross(-5.0, 5.0), coef(5.0, 15.0), slope(-0.5, 0.5);
+        std::uniform_real_distribution<double> depth(0.5, 2.0), speed(-5.0, 15.0), cross(-5.0, 5.0),
+            coef(5.0, 15.0), slope(-0.5, 0.5);
         for (std::size_t k = 0; k < h.v.size(); ++k) {
             h.v[k] = depth(rng);
             u.v[k] = speed(rng);
@@ -148,9 +148,9 @@ BENCHMARK(bm_state_velocity_row)->ComputeStatistics("min", min_of);
 void bm_pressure_row(benchmark::State& state) {
     Layer w;
     Rows cx, cy, ulo, uhi, vlo, vhi, shi, ax, ay;
-    const PressureRowInput in{w.h.mid(),   w.u.mid(),  w.v.mid(),  w.h.at(-1), w.v.at(-1),
-                              w.h.at(1),   w.v.at(1),  w.px.mid(), w.py.mid(), w.gn.mid(),
-                              w.nt.mid(),  w.sx.mid(), w.sy.mid()};
+    const PressureRowInput in{w.h.mid(),  w.u.mid(),  w.v.mid(),  w.h.at(-1), w.v.at(-1),
+                              w.h.at(1),  w.v.at(1),  w.px.mid(), w.py.mid(), w.gn.mid(),
+                              w.nt.mid(), w.sx.mid(), w.sy.mid()};
     const PressureRowOutput out{cx.mid(),  cy.mid(),  ulo.mid(), uhi.mid(), vlo.mid(),
                                 vhi.mid(), shi.mid(), ax.mid(),  ay.mid()};
     const MaterialParams m;
@@ -197,13 +197,12 @@ void bm_update_row(benchmark::State& state) {
     Layer w;
     Fluxes f;
     Rows nh, nhu, nhv;
-    const UpdateRowInput in{f.rows(),     f.factor.mid(), f.ulo.mid(),  f.uhi.mid(),
-                            f.vlo.mid(),  f.vhi.mid(),    f.shi.mid(),  w.h.mid(),
-                            w.hu.mid(),   w.hv.mid(),     w.elevation.mid(), w.sx.mid(),
+    const UpdateRowInput in{f.rows(),    f.factor.mid(), f.ulo.mid(),       f.uhi.mid(),
+                            f.vlo.mid(), f.vhi.mid(),    f.shi.mid(),       w.h.mid(),
+                            w.hu.mid(),  w.hv.mid(),     w.elevation.mid(), w.sx.mid(),
                             w.sy.mid()};
     const UpdateRowParams p{0.01, 0.01, kStride, std::numeric_limits<double>::infinity(), 9.81};
-    run_per_item(state, kRow,
-                 [&] { update_row(in, p, nh.mid(), nhu.mid(), nhv.mid(), 0, kRow); });
+    run_per_item(state, kRow, [&] { update_row(in, p, nh.mid(), nhu.mid(), nhv.mid(), 0, kRow); });
     state.SetLabel("per cell, DEM frame");
 }
 BENCHMARK(bm_update_row)->ComputeStatistics("min", min_of);
@@ -228,8 +227,8 @@ BENCHMARK(bm_sources_row)->ComputeStatistics("min", min_of);
 void bm_cfl_rate_row(benchmark::State& state) {
     Layer w;
     run_per_item(state, kRow, [&] {
-        double r = cfl_rate_row(w.h.mid(), w.hu.mid(), w.hv.mid(), w.px.mid(), w.py.mid(), 1.2,
-                                0.8, 5.0, 5.0, 1e-3, 0, kRow);
+        double r = cfl_rate_row(w.h.mid(), w.hu.mid(), w.hv.mid(), w.px.mid(), w.py.mid(), 1.2, 0.8,
+                                5.0, 5.0, 1e-3, 0, kRow);
         benchmark::DoNotOptimize(r);
     });
     state.SetLabel("per cell");

@@ -188,6 +188,7 @@ void Stepper::step(State& s, double dt) {
 // Thin-layer rule (Wang & Li 2017 section 2.2.3): a cell thinner than h_min takes
 // the velocity of its deepest wet neighbour, or stops if it has none.
 void Stepper::thin_layer_velocities(State& s) const {
+    constexpr int kThinBlock = 16;
     const ActiveBox b = box_;
     const double hmin = h_min_;
 #pragma omp parallel for schedule(static) if (threaded_)
@@ -198,8 +199,39 @@ void Stepper::thin_layer_velocities(State& s) const {
         double* hu_row = s.hu.row(j);
         double* hv_row = s.hv.row(j);
         for (int i = b.i0; i < b.i1; ++i) {
+            // The two common cases a block of cells at a time, with vector compares (cell
+            // by cell, the tests were 3-5 % of a step): every cell at least h_min thick
+            // (nothing to do), or every cell and every neighbour thinner (the velocity
+            // is zero, as for a single such cell below).
+            if ((i - b.i0) % kThinBlock == 0 && i + kThinBlock <= b.i1) {
+                const int e = i + kThinBlock;
+                double wet = 0.0;
+#pragma omp simd reduction(+ : wet)
+                for (int k = i; k < e; ++k) wet += hrow[k] >= hmin ? 1.0 : 0.0;
+                if (wet == kThinBlock) {
+                    i = e - 1;
+                    continue;
+                }
+                double wet_around = 0.0;
+                if (wet == 0.0) {
+#pragma omp simd reduction(+ : wet_around)
+                    for (int k = i; k < e; ++k)
+                        wet_around +=
+                            (h_south[k] >= hmin ? 1.0 : 0.0) + (h_north[k] >= hmin ? 1.0 : 0.0);
+                }
+                if (wet == 0.0 && wet_around == 0.0 && !(hrow[i - 1] >= hmin) &&
+                    !(hrow[e] >= hmin)) {
+#pragma omp simd
+                    for (int k = i; k < e; ++k) {
+                        hu_row[k] = hrow[k] * 0.0;
+                        hv_row[k] = hrow[k] * 0.0;
+                    }
+                    i = e - 1;
+                    continue;
+                }
+            }
             const double h = hrow[i];
-            if (h >= hmin) continue;  // the common case: one load, one compare
+            if (h >= hmin) continue;
             // No wet neighbour (most of the dry margin of the box): the velocity is
             // zero, as the search below would find.
             if (!(hrow[i - 1] >= hmin) && !(hrow[i + 1] >= hmin) && !(h_south[i] >= hmin) &&
