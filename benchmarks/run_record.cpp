@@ -60,10 +60,11 @@ void print(const RunRecord& r) {
     for (std::size_t k = 0; k < r.wall_seconds.size(); ++k)
         walls << (k ? ", " : "") << r.wall_seconds[k];
     std::cout << std::setprecision(4) << "case " << r.case_id << " (" << r.scene << ", " << r.scheme
-              << ", " << r.splitting << ", " << r.threads << " thread" << (r.threads > 1 ? "s" : "") << "), grid " << r.nx
-              << " x " << r.ny << "\n  wall " << r.best_wall() << " s (best of [" << walls.str()
-              << "]), setup " << r.setup_seconds << " s\n  simulated " << r.simulated_time
-              << " s in " << r.steps << " steps, end: " << r.end_reason << "\n  cell updates "
+              << ", " << r.splitting << ", " << r.threads << " thread" << (r.threads > 1 ? "s" : "")
+              << "), grid " << r.nx << " x " << r.ny << "\n  wall " << r.best_wall()
+              << " s (best of [" << walls.str() << "]), setup " << r.setup_seconds
+              << " s\n  simulated " << r.simulated_time << " s in " << r.steps
+              << " steps, end: " << r.end_reason << "\n  cell updates "
               << static_cast<double>(r.cell_updates) << ", " << r.cell_updates_per_second() / 1e6
               << " M/s\n  peak memory " << r.peak_rss_bytes / 1048576.0
               << " MiB = " << r.bytes_per_cell() << " B/cell, mass error " << r.relative_mass_error
