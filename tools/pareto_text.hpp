@@ -54,8 +54,8 @@ the dam break it trades about 10 % more error for 45 % less time). On the chute 
 0.25 m it runs 1.5x as many steps as L S L at 0.4 to the same stopping time, on a 1.3x
 larger active box, so there it is not cheaper: once the deposit has formed, films just
 above h_min (25 um) left on the 45 deg slope keep sliding at up to 20 m/s (faster than
-any cell of the flow, 13 m/s) and set the time step, where under L S L such films stay
-below 2-3 m/s. They carry no visible mass (the maps start at 1 cm) but cost steps;
+any cell of the flow, 13 m/s) and set the time step, where under L S L they slow down
+(2 m/s at t = 6.3 s, when L S L stops). They carry no visible mass (the maps start at 1 cm) but cost steps;
 why the splittings treat them differently is not worked out yet. And its
 deposit error keeps falling with the cell size (0.088, 0.051, 0.029 from 1 m to
 0.25 m) where the L S L runs level off near 0.055-0.065 from 0.5 m on, although the
