@@ -68,19 +68,17 @@ void Stepper::shrink_box_to_wet(const State& s, const ActiveBox& search) {
     ActiveBox wet{grid_.nx, -1, grid_.ny, -1};
     for (int j = search.j0; j < search.j1; ++j) {
         const double* h = s.h.row(j);
-        int first = -1, last = -1;
-        for (int i = search.i0; i < search.i1; ++i) {
-            if (h[i] > 0.0) {
-                if (first < 0) first = i;
-                last = i;
-            }
-        }
-        if (first >= 0) {
-            wet.i0 = std::min(wet.i0, first);
-            wet.i1 = std::max(wet.i1, last + 1);
-            wet.j0 = std::min(wet.j0, j);
-            wet.j1 = std::max(wet.j1, j + 1);
-        }
+        // The first and the last wet cell, searched from either end: a row of a flow
+        // is mostly wet, so neither search goes far.
+        int first = search.i0;
+        while (first < search.i1 && !(h[first] > 0.0)) ++first;
+        if (first == search.i1) continue;
+        int last = search.i1 - 1;
+        while (!(h[last] > 0.0)) --last;
+        wet.i0 = std::min(wet.i0, first);
+        wet.i1 = std::max(wet.i1, last + 1);
+        wet.j0 = std::min(wet.j0, j);
+        wet.j1 = std::max(wet.j1, j + 1);
     }
     if (wet.i1 < 0) wet = ActiveBox{0, 0, 0, 0};
     wet_box_ = wet;
