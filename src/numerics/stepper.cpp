@@ -196,87 +196,83 @@ void Stepper::thin_layer_velocities(State& s) const {
         const double* h_north = s.h.row(j + 1);
         double* hu_row = s.hu.row(j);
         double* hv_row = s.hv.row(j);
-        for (int i = b.i0; i < b.i1; ++i) {
-            // The two common cases a block of cells at a time, with vector compares (cell
-            // by cell, the tests were 3-5 % of a step): every cell at least h_min thick
-            // (nothing to do), or every cell and every neighbour thinner (the velocity
-            // is zero, as for a single such cell below).
-            if ((i - b.i0) % kThinBlock == 0 && i + kThinBlock <= b.i1) {
-                const int e = i + kThinBlock;
-                double wet = 0.0;
+        // The two common cases a block of kThinBlock cells from a at a time, with vector
+        // compares (cell by cell, the tests were 3-5 % of a step): every cell at least
+        // h_min thick (nothing to do), or every cell and every neighbour thinner (the
+        // velocity is zero, as for a single such cell below). True when it is settled.
+        const auto settle_block = [=](int a) {
+            const int e = a + kThinBlock;  // a fixed trip count: the loops vectorise fully
+            double wet = 0.0;
 #pragma omp simd reduction(+ : wet)
-                for (int k = i; k < e; ++k) wet += hrow[k] >= hmin ? 1.0 : 0.0;
-                if (wet == kThinBlock) {
-                    i = e - 1;
-                    continue;
-                }
-                double wet_around = 0.0;
-                if (wet == 0.0) {
+            for (int k = a; k < e; ++k) wet += hrow[k] >= hmin ? 1.0 : 0.0;
+            if (wet == kThinBlock) return true;
+            if (wet != 0.0 || hrow[a - 1] >= hmin || hrow[e] >= hmin) return false;
+            double wet_around = 0.0;
 #pragma omp simd reduction(+ : wet_around)
-                    for (int k = i; k < e; ++k)
-                        wet_around +=
-                            (h_south[k] >= hmin ? 1.0 : 0.0) + (h_north[k] >= hmin ? 1.0 : 0.0);
-                }
-                if (wet == 0.0 && wet_around == 0.0 && !(hrow[i - 1] >= hmin) &&
-                    !(hrow[e] >= hmin)) {
+            for (int k = a; k < e; ++k)
+                wet_around += (h_south[k] >= hmin ? 1.0 : 0.0) + (h_north[k] >= hmin ? 1.0 : 0.0);
+            if (wet_around != 0.0) return false;
 #pragma omp simd
-                    for (int k = i; k < e; ++k) {
-                        hu_row[k] = hrow[k] * 0.0;
-                        hv_row[k] = hrow[k] * 0.0;
-                    }
-                    i = e - 1;
+            for (int k = a; k < e; ++k) {
+                hu_row[k] = hrow[k] * 0.0;
+                hv_row[k] = hrow[k] * 0.0;
+            }
+            return true;
+        };
+        for (int a = b.i0; a < b.i1; a += kThinBlock) {
+            const int e = std::min(a + kThinBlock, b.i1);
+            if (e - a == kThinBlock && settle_block(a)) continue;
+            for (int i = a; i < e; ++i) {
+                const double h = hrow[i];
+                if (h >= hmin) continue;
+                // No wet neighbour (most of the dry margin of the box): the velocity is
+                // zero, as the search below would find.
+                if (!(hrow[i - 1] >= hmin) && !(hrow[i + 1] >= hmin) && !(h_south[i] >= hmin) &&
+                    !(h_north[i] >= hmin)) {
+                    hu_row[i] = h * 0.0;
+                    hv_row[i] = h * 0.0;
                     continue;
                 }
-            }
-            const double h = hrow[i];
-            if (h >= hmin) continue;
-            // No wet neighbour (most of the dry margin of the box): the velocity is
-            // zero, as the search below would find.
-            if (!(hrow[i - 1] >= hmin) && !(hrow[i + 1] >= hmin) && !(h_south[i] >= hmin) &&
-                !(h_north[i] >= hmin)) {
-                hu_row[i] = h * 0.0;
-                hv_row[i] = h * 0.0;
-                continue;
-            }
-            double best = hmin, u = 0.0, v = 0.0;
-            int best_i = i, best_j = j;
-            const int ni[4] = {i - 1, i + 1, i, i};
-            const int nj[4] = {j, j, j - 1, j + 1};
-            for (int n = 0; n < 4; ++n) {
-                const double hn = s.h(ni[n], nj[n]);  // ghosts hold the boundary images
-                if (hn >= best) {
-                    best = hn;
-                    u = s.hu(ni[n], nj[n]) / hn;
-                    v = s.hv(ni[n], nj[n]) / hn;
-                    best_i = std::clamp(ni[n], 0, grid_.nx - 1);
-                    best_j = std::clamp(nj[n], 0, grid_.ny - 1);
+                double best = hmin, u = 0.0, v = 0.0;
+                int best_i = i, best_j = j;
+                const int ni[4] = {i - 1, i + 1, i, i};
+                const int nj[4] = {j, j, j - 1, j + 1};
+                for (int n = 0; n < 4; ++n) {
+                    const double hn = s.h(ni[n], nj[n]);  // ghosts hold the boundary images
+                    if (hn >= best) {
+                        best = hn;
+                        u = s.hu(ni[n], nj[n]) / hn;
+                        v = s.hv(ni[n], nj[n]) / hn;
+                        best_i = std::clamp(ni[n], 0, grid_.nx - 1);
+                        best_j = std::clamp(nj[n], 0, grid_.ny - 1);
+                    }
                 }
-            }
-            // In the DEM frame the copied horizontal velocity means a different
-            // along-surface speed on this cell's slope: keep the neighbour's.
-            if (terrain_.has_metric && (u != 0.0 || v != 0.0)) {
-                const auto surface_speed = [&](int ii, int jj) {
-                    const double w = terrain_.sx(ii, jj) * u + terrain_.sy(ii, jj) * v;
-                    return std::sqrt(u * u + v * v + w * w);
-                };
-                const double here = surface_speed(i, j), there = surface_speed(best_i, best_j);
-                if (here > there) {
-                    u *= there / here;
-                    v *= there / here;
+                // In the DEM frame the copied horizontal velocity means a different
+                // along-surface speed on this cell's slope: keep the neighbour's.
+                if (terrain_.has_metric && (u != 0.0 || v != 0.0)) {
+                    const auto surface_speed = [&](int ii, int jj) {
+                        const double w = terrain_.sx(ii, jj) * u + terrain_.sy(ii, jj) * v;
+                        return std::sqrt(u * u + v * v + w * w);
+                    };
+                    const double here = surface_speed(i, j), there = surface_speed(best_i, best_j);
+                    if (here > there) {
+                        u *= there / here;
+                        v *= there / here;
+                    }
                 }
-            }
-            // The copied velocity must also respect this cell's energy cap (the
-            // neighbour may lie lower, where more speed is allowed).
-            if (u != 0.0 || v != 0.0) {
-                double speed2 = u * u + v * v;
-                if (terrain_.has_metric) {
-                    const double w = terrain_.sx(i, j) * u + terrain_.sy(i, j) * v;
-                    speed2 += w * w;
+                // The copied velocity must also respect this cell's energy cap (the
+                // neighbour may lie lower, where more speed is allowed).
+                if (u != 0.0 || v != 0.0) {
+                    double speed2 = u * u + v * v;
+                    if (terrain_.has_metric) {
+                        const double w = terrain_.sx(i, j) * u + terrain_.sy(i, j) * v;
+                        speed2 += w * w;
+                    }
+                    cap_speed(u, v, speed2, speed_cap2(terrain_.elevation(i, j)));
                 }
-                cap_speed(u, v, speed2, speed_cap2(terrain_.elevation(i, j)));
+                s.hu(i, j) = h * u;
+                s.hv(i, j) = h * v;
             }
-            s.hu(i, j) = h * u;
-            s.hv(i, j) = h * v;
         }
     }
 }
