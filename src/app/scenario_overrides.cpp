@@ -63,9 +63,9 @@ void apply_release_overrides(Scenario& s, const ScenarioOverrides& o) {
 }
 
 // A quality preset (docs/performance.md): scheme, limiter, Courant number, splitting,
-// and the cell size scaled -- the scenario's explicit one here, the automatic DEM resolution
-// when the DEM is read (Scenario::cell_size_factor). The explicit flags, applied after
-// this, win.
+// and the cell size scaled -- the scenario's explicit one here, the automatic DEM
+// resolution when the DEM is read (Scenario::cell_size_factor). The explicit flags,
+// applied after this, win.
 void apply_quality(Scenario& s, Quality q) {
     const QualityPreset p = quality_preset(q);
     s.numerics.scheme = p.scheme;

@@ -3,8 +3,9 @@
 // ("The speed/accuracy trade"). Each is a point chosen from the Pareto study
 // (tools/pareto_study.cpp), which states its error and cost on the paper's chute.
 // A preset sets the scheme, the limiter, the Courant number, the splitting and scales
-// the scene's cell size (the scenario's numerics.cell_size, or the DEM's resolution when that is
-// automatic); flags given explicitly (--scheme, --limiter, --cfl, --cell-size) win.
+// the scene's cell size (the scenario's numerics.cell_size, or the DEM's resolution
+// when that is automatic); flags given explicitly (--scheme, --limiter, --cfl,
+// --cell-size) win.
 #include <string>
 
 #include "avalanche/numerics/parameters.hpp"
