@@ -130,11 +130,11 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
     const auto vel = [hmin](double hh, double quotient) {  // the quotient q / hh
         return (hh >= hmin) & (hh > 0.0) ? quotient : 0.0;
     };
-    // A vanishing gradient (at rest, or a uniformly moving block) counts as active:
-    // passive there made a mass released from rest start with the passive k everywhere
-    // and grow a period-4 pattern of regimes, with errors that rose under refinement
-    // (docs/verification.md, finding 2). "Vanishing" is relative (1e-12 of the
-    // velocities), so round-off cannot flip it.
+    // A vanishing difference (at rest, or a uniformly moving block) counts as
+    // extending: passive there made a mass released from rest start with the passive k
+    // everywhere and grow a period-4 pattern of regimes, with errors that rose under
+    // refinement (docs/verification.md, finding 2). "Vanishing" is relative (1e-12 of
+    // the velocities), so round-off cannot flip it.
     const auto extends = [](double lo, double hi) {
         return hi - lo >= -1e-12 * std::max(std::abs(lo), std::abs(hi));
     };
@@ -145,9 +145,18 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
         cy = in.py[i];
     } else {
         // Active where the flow extends (du/dx > 0), passive where it compresses
-        // (Wang & Li 2017 after eq. 3).
-        const bool x_active = extends(vel(in.h[im], in.u[im]), vel(in.h[ip], in.u[ip]));
-        const bool y_active = extends(vel(in.h_s[i], in.v_s[i]), vel(in.h_n[i], in.v_n[i]));
+        // (Wang & Li 2017 after eq. 3), du/dx being the minmod of the two one-sided
+        // differences: passive only where both compress. The central difference
+        // (u[i+1] - u[i-1]) does not see the cell's own velocity, while the cell's
+        // pressure acts on exactly its two neighbours, so a passive cell pushed its
+        // neighbours apart and turned the cells two away passive: patterns of passive
+        // cells grew inside spreading flows and the errors rose under refinement
+        // (Godunov, similarity cap, docs/verification.md finding 2).
+        const double uc = vel(hh, in.u[i]), vc = vel(hh, in.v[i]);
+        const bool x_active =
+            extends(vel(in.h[im], in.u[im]), uc) | extends(uc, vel(in.h[ip], in.u[ip]));
+        const bool y_active =
+            extends(vel(in.h_s[i], in.v_s[i]), vc) | extends(vc, vel(in.h_n[i], in.v_n[i]));
         const EarthPressureCoefficients& k = p.k;
         const double kx = x_active ? k.kx_active : k.kx_passive;
         const double ky =

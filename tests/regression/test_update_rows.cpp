@@ -266,14 +266,18 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
             double cx = px.v[k], cy = py.v[k];
             if (!isotropic) {
                 const int im = std::max(i - 1, lo) + w + ng, ip = std::min(i + 1, hi) + w + ng;
-                const bool x_active = extends(vel(h.v[im], hu.v[im]), vel(h.v[ip], hu.v[ip]));
-                const bool y_active =
-                    extends(vel(h.v[k - w], hv.v[k - w]), vel(h.v[k + w], hv.v[k + w]));
+                // Passive only where both one-sided differences compress.
+                const double uc = vel(h.v[k], hu.v[k]), vc = vel(h.v[k], hv.v[k]);
+                const bool x_active =
+                    extends(vel(h.v[im], hu.v[im]), uc) || extends(uc, vel(h.v[ip], hu.v[ip]));
+                const bool y_active = extends(vel(h.v[k - w], hv.v[k - w]), vc) ||
+                                      extends(vc, vel(h.v[k + w], hv.v[k + w]));
                 (x_active ? active : passive)++;
                 cx = kc.kx(x_active) * px.v[k];
                 cy = kc.ky(x_active, y_active) * py.v[k];
             }
-            // The last two: the celerities hllc_flux takes, sqrt(c h) of a wet side, 0 of a dry one.
+            // The last two: the celerities hllc_flux takes, sqrt(c h) of a wet side, 0 of a dry
+            // one.
             double ref[9] = {cx, cy, kNoBound, -kNoBound, kNoBound, -kNoBound, 0.0, 0.0, 0.0};
             const double hh = h.v[k];
             if (hh >= h_min && hh > 0.0) {
@@ -300,4 +304,54 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
     }
     EXPECT_GT(active, 100);
     EXPECT_GT(passive, 100);
+}
+
+TEST(UpdateRows, PressureRowIsPassiveOnlyWhereBothOneSidedDifferencesCompress) {
+    // One row of wet cells, v = 0 (y active everywhere), u rising at 0.1 per cell (the flow
+    // extends) except for one slow cell (a velocity minimum) and a stretch where u falls
+    // (the flow compresses). k_x per cell must be active except inside the stretch:
+    //  - the cell before the slow one has a negative central difference (u[i+1] - u[i-1]
+    //    = -0.3) but its own one-sided differences do not both compress: active;
+    //  - the slow cell itself: -0.4 then +0.6: active (du/dx = 0 at a minimum);
+    //  - where u falls by 0.2 per cell on both sides: passive, also at its ends only where
+    //    both differences fall.
+    const int w = 30, ng = 2;
+    EarthPressureCoefficients kc;
+    kc.kx_active = 0.5;
+    kc.kx_passive = 3.0;
+    kc.ky_given_kx_active_active = kc.ky_given_kx_passive_active = 0.7;
+    kc.ky_given_kx_active_passive = kc.ky_given_kx_passive_passive = 2.0;
+    Rows h(w, 1.0), qu(w), qv(w), px(w, 1.0), py(w, 1.0), gn(w, 9.81), nt(w, 1.0);
+    const int slow = 8, fall0 = 16, fall1 = 22;  // u falls over cells fall0 .. fall1
+    std::vector<double> u(static_cast<std::size_t>(w));
+    for (int c = 0; c < w; ++c) {
+        const double x = 0.1 * c;
+        u[static_cast<std::size_t>(c)] =
+            c < fall0    ? x
+            : c <= fall1 ? 0.1 * fall0 - 0.2 * (c - fall0)
+                         : 0.1 * fall0 - 0.2 * (fall1 - fall0) + 0.1 * (c - fall1);
+    }
+    u[slow] -= 0.5;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < w; ++c)
+            qu.v[static_cast<std::size_t>(r * w + c)] = u[static_cast<std::size_t>(c)];
+    const auto col0 = [&](Rows& f, int row) { return f.v.data() + row * w + ng; };
+    const PressureRowInput in{col0(h, 1),  col0(qu, 1), col0(qv, 1), col0(h, 0),  col0(qv, 0),
+                              col0(h, 2),  col0(qv, 2), col0(px, 1), col0(py, 1), col0(gn, 1),
+                              col0(nt, 1), nullptr,     nullptr};
+    std::vector<double> out_v(9 * static_cast<std::size_t>(w), -7.0);
+    const auto out_at = [&](int a) { return out_v.data() + a * w + ng; };
+    const PressureRowOutput out{out_at(0), out_at(1), out_at(2), out_at(3), out_at(4),
+                                out_at(5), out_at(6), out_at(7), out_at(8)};
+    const int lo = -ng, hi = w - ng - 1;
+    pressure_row(in, out, PressureRowParams{kc, 3.0, 1e-3, false}, lo, hi + 1, lo, hi);
+    for (int c = 1; c + 1 < w; ++c) {  // the end columns see one difference only
+        const bool passive = c > fall0 && c < fall1;
+        EXPECT_EQ(out_at(0)[c - ng], passive ? kc.kx_passive : kc.kx_active) << "cell " << c;
+        EXPECT_EQ(out_at(1)[c - ng],
+                  passive ? kc.ky_given_kx_passive_active : kc.ky_given_kx_active_active)
+            << "cell " << c;
+    }
+    // The case the central difference got wrong: it is negative before the slow cell.
+    EXPECT_LT(u[slow] - u[slow - 2], 0.0);
 }

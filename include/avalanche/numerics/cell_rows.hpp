@@ -75,7 +75,8 @@ struct PressureRowParams {
 };
 
 // The advection's per-cell stage on cells i0 .. i1 - 1 of one row (advection.cpp,
-// Stepper::pressure_row: active where the flow extends, passive where it compresses;
+// Stepper::pressure_row: active where the flow extends, passive where it compresses,
+// i.e. where both one-sided velocity differences are negative;
 // Riemann-invariant bounds u -/+ 2a, v -/+ 2a and the along-surface speed bound of wet
 // cells). The x-differences are clamped to the columns lo and hi. Output pointers
 // address column 0 like the inputs.
