@@ -118,12 +118,12 @@ void bm_predictor_row(benchmark::State& state) {
     Layer w;
     Rows fh, fq, ft, ph, pq, pt, pu, pv;
     for (Rows* r : {&fh, &fq, &ft}) std::fill(r->v.begin(), r->v.end(), 0.1);
-    const FaceRowInput q{w.h.mid(), w.hu.mid(), w.hv.mid(), w.c.mid(), 1};
+    const FaceRowInput q = w.x_faces();
     const FaceRowOutput flux{fh.mid(), fq.mid(), ft.mid()};
     FaceRowOutput out{ph.mid(), pq.mid(), pt.mid()};
     out.un = pu.mid();
     out.ut = pv.mid();
-    run_per_item(state, kRow, [&] { predictor_row(q, flux, 0.01, out, kRow); });
+    run_per_item(state, kRow, [&] { predictor_row(q, flux, 0.01, 1e-3, out, kRow); });
     state.SetLabel("per cell");
 }
 BENCHMARK(bm_predictor_row)->ComputeStatistics("min", min_of);

@@ -244,8 +244,10 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
             FaceRowOutput predicted = face_out(w.row_h, w.row_hv, w.row_hu, pc0 + ng);
             predicted.un = w.row_v.data() + pc0 + ng;
             predicted.ut = w.row_u.data() + pc0 + ng;
-            predictor_row(face_in(sh, shv, shu, full(pc0, r), w.cy, w.ay, w.k(pc0, r), st),
-                          face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), ratio, predicted, n);
+            predictor_row(
+                with_velocities(face_in(sh, shv, shu, full(pc0, r), w.cy, w.ay, w.k(pc0, r), st),
+                                w.sv, w.su, w.k(pc0, r)),
+                face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), ratio, hd, predicted, n);
             celerity_row(w.row_h.data() + pc0 + ng, w.cx.data() + w.k(pc0, r), hd,
                          w.row_a.data() + pc0 + ng, n);
             const std::ptrdiff_t k = w.k(b.i0, r), c0 = b.i0 + ng;
@@ -283,8 +285,10 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
             FaceRowOutput predicted = face_out(w.pred_h, w.pred_hu, w.pred_hv, w.k(b.i0, r));
             predicted.un = w.pred_u.data() + w.k(b.i0, r);
             predicted.ut = w.pred_v.data() + w.k(b.i0, r);
-            predictor_row(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.ax, w.k(b.i0, r), 1),
-                          first_order, ratio, predicted, n);
+            predictor_row(
+                with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.ax, w.k(b.i0, r), 1),
+                                w.su, w.sv, w.k(b.i0, r)),
+                first_order, ratio, hd, predicted, n);
             celerity_row(w.pred_h.data() + w.k(b.i0, r), w.cy.data() + w.k(b.i0, r), hd,
                          w.pred_a.data() + w.k(b.i0, r), n);
         }

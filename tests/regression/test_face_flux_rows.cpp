@@ -175,7 +175,7 @@ TEST(FaceFluxRows, WafRowIsBitwiseTheScalarWafFaceFluxForEveryLimiter) {
 TEST(FaceFluxRows, PredictorRowIsTheScalarHalfStep) {
     std::mt19937_64 rng(20261205);
     const double h_dry = 1e-3, ratio = 0.37;
-    long emptied = 0;
+    long emptied = 0, kept = 0;
     for (int trial = 0; trial < 20; ++trial) {
         const Block q = random_block(rng, 41 + trial, 5, h_dry);
         const Block f =
@@ -185,11 +185,15 @@ TEST(FaceFluxRows, PredictorRowIsTheScalarHalfStep) {
                 pv(q.h.size());
             const std::ptrdiff_t k0 = 2 * q.width + 1;
             const int n = 3 * q.width;
+            FaceRowInput in{q.h.data() + k0, q.qn.data() + k0, q.qt.data() + k0,
+                            q.c.data() + k0, off};
+            in.un = q.un.data() + k0;  // the state's quotients, as the stepper passes them
+            in.ut = q.ut.data() + k0;
             predictor_row(
-                {q.h.data() + k0, q.qn.data() + k0, q.qt.data() + k0, q.c.data() + k0, off},
+                in,
                 {const_cast<double*>(f.h.data()) + k0, const_cast<double*>(f.qn.data()) + k0,
                  const_cast<double*>(f.qt.data()) + k0},
-                ratio,
+                ratio, h_dry,
                 {ph.data() + k0, pq.data() + k0, pt.data() + k0, pu.data() + k0, pv.data() + k0},
                 n);
             for (std::ptrdiff_t k = k0; k < k0 + n; ++k) {
@@ -197,7 +201,13 @@ TEST(FaceFluxRows, PredictorRowIsTheScalarHalfStep) {
                 double h = q.h[k] - ratio * (f.h[k + off] - f.h[k]);
                 double qn = q.qn[k] - ratio * (f.qn[k + off] - f.qn[k]);
                 double qt = q.qt[k] - ratio * (f.qt[k + off] - f.qt[k]);
-                if (h <= 0.0) {
+                if (q.h[k] >= h_dry && !(h >= h_dry)) {
+                    // Wet in the state, thin in the prediction: the state, not predicted.
+                    h = q.h[k];
+                    qn = q.qn[k];
+                    qt = q.qt[k];
+                    ++kept;
+                } else if (h <= 0.0) {
                     h = qn = qt = 0.0;
                     ++emptied;
                 }
@@ -212,4 +222,5 @@ TEST(FaceFluxRows, PredictorRowIsTheScalarHalfStep) {
         }
     }
     EXPECT_GT(emptied, 100);  // the emptying branch was taken
+    EXPECT_GT(kept, 100);     // and the branch that keeps a wet cell wet
 }

@@ -32,7 +32,8 @@ struct FaceRowInput {
     std::ptrdiff_t off;
     // The quotients qn / h and qt / h per cell (inf or NaN where h = 0), computed once
     // per cell by the caller; required by the flux kernels, which read the velocities
-    // from them (and qn for the WAF jumps), not by predictor_row.
+    // from them (and qn for the WAF jumps), and by predictor_row (for the cells it
+    // leaves unpredicted).
     const double* un = nullptr;
     const double* ut = nullptr;
     // The celerity sqrt(c h) of every cell at least h_dry thick, 0 on the others
@@ -72,8 +73,10 @@ void waf_face_row(const FaceRowInput& in, const FaceRowOutput& out, int n, doubl
 
 // The transverse predictor's half step on one row of cells (Wang & Li 2017 eqs. 6-8): out(m) = q(m)
 // - ratio (F(m + off) - F(m)) for n cells, where F(m) is the flux of the face before cell m; a cell
-// left with h <= 0 is set empty (predicted states only feed fluxes).
-void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio,
+// left with h <= 0 is set empty (predicted states only feed fluxes), and a cell at least h_dry
+// thick whose prediction falls below h_dry keeps its state, so that the faces do not take it
+// for dry.
+void predictor_row(const FaceRowInput& q, const FaceRowOutput& flux, double ratio, double h_dry,
                    const FaceRowOutput& out, int n) noexcept;
 
 }  // namespace avalanche
