@@ -153,7 +153,8 @@ void bm_pressure_row(benchmark::State& state) {
     Rows cx, cy, ulo, uhi, vlo, vhi, shi, ax, ay;
     const PressureRowInput in{w.h.mid(),  w.u.mid(),  w.v.mid(),  w.h.at(-1), w.v.at(-1),
                               w.h.at(1),  w.v.at(1),  w.px.mid(), w.py.mid(), w.gn.mid(),
-                              w.nt.mid(), w.sx.mid(), w.sy.mid()};
+                              w.nt.mid(), w.sx.mid(), w.sy.mid(), w.h.at(-1), w.hv.at(-1),
+                              w.h.at(1),  w.hv.at(1)};  // rows -/+ 2 stand in as -/+ 1
     const PressureRowOutput out{cx.mid(),  cy.mid(),  ulo.mid(), uhi.mid(), vlo.mid(),
                                 vhi.mid(), shi.mid(), ax.mid(),  ay.mid()};
     const MaterialParams m;

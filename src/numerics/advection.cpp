@@ -96,6 +96,7 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
     const int ng = kGhostLayers;
     // Central differences, clamped at the padding.
     const int jm = std::max(r - 1, -ng), jp = std::min(r + 1, grid_.ny + ng - 1);
+    const int jmm = std::max(r - 2, -ng), jpp = std::min(r + 2, grid_.ny + ng - 1);
     // Inputs and outputs address column 0 of row r.
     const std::ptrdiff_t o = w.k(0, r);
     const PressureRowInput in{s.h.row(r),
@@ -110,7 +111,11 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
                               terrain_.gn.row(r),
                               terrain_.normal_thickness.row(r),
                               metric ? terrain_.sx.row(r) : nullptr,
-                              metric ? terrain_.sy.row(r) : nullptr};
+                              metric ? terrain_.sy.row(r) : nullptr,
+                              s.h.row(jmm),
+                              s.hv.row(jmm),
+                              s.h.row(jpp),
+                              s.hv.row(jpp)};
     const PressureRowOutput out{w.cx.data() + o,      w.cy.data() + o,   w.u_lo.data() + o,
                                 w.u_hi.data() + o,    w.v_lo.data() + o, w.v_hi.data() + o,
                                 w.speed_hi.data() + o, w.ax.data() + o,    w.ay.data() + o};

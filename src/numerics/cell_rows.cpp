@@ -125,7 +125,8 @@ namespace {
 
 template <bool Isotropic, bool Metric>
 AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRowOutput& out,
-                                    const PressureRowParams& p, int i, int im, int ip) {
+                                    const PressureRowParams& p, int i, int im, int ip, int imm,
+                                    int ipp) {
     const double hmin = p.h_min;
     const auto vel = [hmin](double hh, double quotient) {  // the quotient q / hh
         return (hh >= hmin) & (hh > 0.0) ? quotient : 0.0;
@@ -145,18 +146,36 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
         cy = in.py[i];
     } else {
         // Active where the flow extends (du/dx > 0), passive where it compresses
-        // (Wang & Li 2017 after eq. 3), du/dx being the minmod of the two one-sided
-        // differences: passive only where both compress. The central difference
-        // (u[i+1] - u[i-1]) does not see the cell's own velocity, while the cell's
-        // pressure acts on exactly its two neighbours, so a passive cell pushed its
-        // neighbours apart and turned the cells two away passive: patterns of passive
-        // cells grew inside spreading flows and the errors rose under refinement
-        // (Godunov, similarity cap, docs/verification.md finding 2).
+        // (Wang & Li 2017 after eq. 3). Passive takes the central difference
+        // u[i+1] - u[i-1] < 0 confirmed at a second scale: both one-sided differences
+        // < 0, or the difference over four cells u[i+2] - u[i-2] < 0.
+        // The central difference alone does not see the cell's own velocity, while the
+        // cell's pressure acts on exactly its two neighbours: a passive cell pushed
+        // them apart and turned the cells two away passive, and patterns of passive
+        // cells grew inside spreading flows with errors that rose under refinement
+        // (similarity cap, docs/verification.md finding 2). Neither confirmation is
+        // moved by that push (the cell's own velocity and u[i+/-2] stay), so a pattern
+        // cannot feed itself. Either alone is not enough: the one-sided differences
+        // alone make every velocity extremum active, and in a decelerating deposit,
+        // where the velocities are small and noisy, the pile then spread less and less
+        // as the cells got smaller (parametric chute).
+        const auto active = [&](bool wide_extends, double l, double c, double r) {
+            return extends(l, r) | ((extends(l, c) | extends(c, r)) & wide_extends);
+        };
         const double uc = vel(hh, in.u[i]), vc = vel(hh, in.v[i]);
-        const bool x_active =
-            extends(vel(in.h[im], in.u[im]), uc) | extends(uc, vel(in.h[ip], in.u[ip]));
+        // The rows two away carry momenta, not quotients: extends() of their velocities
+        // multiplied out by both (positive) depths, so that no division is needed. A
+        // thin or dry side counts as at rest (momentum 0 over depth 1), as vel() has it.
+        const double h_ss = in.h_ss[i], h_nn = in.h_nn[i];
+        const bool wet_ss = (h_ss >= hmin) & (h_ss > 0.0);
+        const bool wet_nn = (h_nn >= hmin) & (h_nn > 0.0);
+        const double q_ss = vel(h_ss, in.hv_ss[i]), d_ss = wet_ss ? h_ss : 1.0;
+        const double q_nn = vel(h_nn, in.hv_nn[i]), d_nn = wet_nn ? h_nn : 1.0;
+        const double lo_y = q_ss * d_nn, hi_y = q_nn * d_ss;  // v_ss, v_nn times d_ss d_nn
+        const bool x_active = active(extends(vel(in.h[imm], in.u[imm]), vel(in.h[ipp], in.u[ipp])),
+                                     vel(in.h[im], in.u[im]), uc, vel(in.h[ip], in.u[ip]));
         const bool y_active =
-            extends(vel(in.h_s[i], in.v_s[i]), vc) | extends(vc, vel(in.h_n[i], in.v_n[i]));
+            active(extends(lo_y, hi_y), vel(in.h_s[i], in.v_s[i]), vc, vel(in.h_n[i], in.v_n[i]));
         const EarthPressureCoefficients& k = p.k;
         const double kx = x_active ? k.kx_active : k.kx_passive;
         const double ky =
@@ -202,15 +221,27 @@ AVALANCHE_SIMD_CLONES void pressure_row_clone(const PressureRowInput& in,
     // Central differences along the row, clamped at the padding columns lo and hi.
     int a = i0, e = i1;
     if (a < e && a == lo) {
-        pressure_lane<Isotropic, Metric>(in, out, p, a, a, std::min(a + 1, hi));
+        pressure_lane<Isotropic, Metric>(in, out, p, a, a, std::min(a + 1, hi), a,
+                                         std::min(a + 2, hi));
         ++a;
     }
     if (a < e && e - 1 == hi) {
-        pressure_lane<Isotropic, Metric>(in, out, p, e - 1, std::max(e - 2, lo), e - 1);
+        pressure_lane<Isotropic, Metric>(in, out, p, e - 1, std::max(e - 2, lo), e - 1,
+                                         std::max(e - 3, lo), e - 1);
+        --e;
+    }
+    // The second neighbours clamped too (the first interior cell's i - 2 is lo).
+    if (a < e && a == lo + 1) {
+        pressure_lane<Isotropic, Metric>(in, out, p, a, a - 1, a + 1, lo, std::min(a + 2, hi));
+        ++a;
+    }
+    if (a < e && e == hi) {
+        pressure_lane<Isotropic, Metric>(in, out, p, e - 1, e - 2, e, std::max(e - 3, lo), hi);
         --e;
     }
 #pragma omp simd
-    for (int i = a; i < e; ++i) pressure_lane<Isotropic, Metric>(in, out, p, i, i - 1, i + 1);
+    for (int i = a; i < e; ++i)
+        pressure_lane<Isotropic, Metric>(in, out, p, i, i - 1, i + 1, i - 2, i + 2);
 }
 
 }  // namespace

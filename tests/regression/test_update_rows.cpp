@@ -213,6 +213,7 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
     for (int trial = 0; trial < 40; ++trial) {
         const bool isotropic = trial % 4 == 3, metric = trial % 2 == 1;
         Rows h(w), hu(w), hv(w), px(w), py(w), gn(w), nt(w), sx(w), sy(w);
+        Rows hf(w), hvf(w);  // rows 0 and 2: two rows south and north of the middle one
         for (int k = 0; k < 3 * w; ++k) {
             const double kind = unit(rng);
             h.v[k] = kind < 0.15 ? 0.0 : kind < 0.22 ? 0.5 * h_min : 3.0 * unit(rng);
@@ -226,6 +227,9 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
             nt.v[k] = 0.5 + unit(rng);
             sx.v[k] = sym(rng);
             sy.v[k] = sym(rng);
+            const double far = unit(rng);
+            hf.v[k] = far < 0.15 ? 0.0 : far < 0.22 ? 0.5 * h_min : 3.0 * unit(rng);
+            hvf.v[k] = hf.v[k] * (far > 0.8 ? -1.0 : 10.0 * sym(rng));
         }
         // Column i of the row is element i + ng.
         const auto col0 = [&](Rows& f, int row) { return f.v.data() + row * w + ng; };
@@ -247,7 +251,11 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
                                   col0(gn, 1),
                                   col0(nt, 1),
                                   metric ? col0(sx, 1) : nullptr,
-                                  metric ? col0(sy, 1) : nullptr};
+                                  metric ? col0(sy, 1) : nullptr,
+                                  col0(hf, 0),
+                                  col0(hvf, 0),
+                                  col0(hf, 2),
+                                  col0(hvf, 2)};
         std::vector<double> out_v(9 * static_cast<std::size_t>(w), -7.0);
         const auto out_at = [&](int a) { return out_v.data() + a * w + ng; };
         const PressureRowOutput out{out_at(0), out_at(1), out_at(2), out_at(3), out_at(4),
@@ -266,12 +274,25 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
             double cx = px.v[k], cy = py.v[k];
             if (!isotropic) {
                 const int im = std::max(i - 1, lo) + w + ng, ip = std::min(i + 1, hi) + w + ng;
-                // Passive only where both one-sided differences compress.
-                const double uc = vel(h.v[k], hu.v[k]), vc = vel(h.v[k], hv.v[k]);
+                // Passive where the central difference compresses, confirmed by both
+                // one-sided differences or by the difference over four cells.
+                const auto is_active = [&](bool wide, double l, double c, double r) {
+                    const bool central = extends(l, r), one_sided = extends(l, c) || extends(c, r);
+                    return central || (one_sided && wide);
+                };
+                const int imm = std::max(i - 2, lo) + w + ng, ipp = std::min(i + 2, hi) + w + ng;
                 const bool x_active =
-                    extends(vel(h.v[im], hu.v[im]), uc) || extends(uc, vel(h.v[ip], hu.v[ip]));
-                const bool y_active = extends(vel(h.v[k - w], hv.v[k - w]), vc) ||
-                                      extends(vc, vel(h.v[k + w], hv.v[k + w]));
+                    is_active(extends(vel(h.v[imm], hu.v[imm]), vel(h.v[ipp], hu.v[ipp])),
+                              vel(h.v[im], hu.v[im]), vel(h.v[k], hu.v[k]), vel(h.v[ip], hu.v[ip]));
+                // Two rows away: v_ss <= v_nn multiplied out by both depths (a thin side
+                // at rest: momentum 0, depth 1).
+                const auto wet = [h_min](double hh) { return hh >= h_min && hh > 0.0; };
+                const double hs2 = hf.v[k - w], hn2 = hf.v[k + w];
+                const double q_ss = wet(hs2) ? hvf.v[k - w] : 0.0, d_ss = wet(hs2) ? hs2 : 1.0;
+                const double q_nn = wet(hn2) ? hvf.v[k + w] : 0.0, d_nn = wet(hn2) ? hn2 : 1.0;
+                const bool y_active =
+                    is_active(extends(q_ss * d_nn, q_nn * d_ss), vel(h.v[k - w], hv.v[k - w]),
+                              vel(h.v[k], hv.v[k]), vel(h.v[k + w], hv.v[k + w]));
                 (x_active ? active : passive)++;
                 cx = kc.kx(x_active) * px.v[k];
                 cy = kc.ky(x_active, y_active) * py.v[k];
@@ -306,30 +327,31 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
     EXPECT_GT(passive, 100);
 }
 
-TEST(UpdateRows, PressureRowIsPassiveOnlyWhereBothOneSidedDifferencesCompress) {
+TEST(UpdateRows, PressureRowRegimeIsTheCentralDifferenceConfirmedAtASecondScale) {
     // One row of wet cells, v = 0 (y active everywhere), u rising at 0.1 per cell (the flow
-    // extends) except for one slow cell (a velocity minimum) and a stretch where u falls
-    // (the flow compresses). k_x per cell must be active except inside the stretch:
-    //  - the cell before the slow one has a negative central difference (u[i+1] - u[i-1]
-    //    = -0.3) but its own one-sided differences do not both compress: active;
-    //  - the slow cell itself: -0.4 then +0.6: active (du/dx = 0 at a minimum);
-    //  - where u falls by 0.2 per cell on both sides: passive, also at its ends only where
-    //    both differences fall.
+    // extends) except for one slow cell (a velocity minimum) and a stretch where u falls by
+    // 0.2 per cell (the flow compresses). Expected k_x per cell:
+    //  - the cell before the slow one: central difference u[i+1] - u[i-1] = -0.3, but
+    //    neither confirmed (its one-sided differences are +0.1 and -0.4; over four cells
+    //    +0.4): active. A lone slow cell is what made patterns of passive cells grow;
+    //  - inside the falling stretch: central and both one-sided differences negative:
+    //    passive;
+    //  - at the stretch's two ends: central -0.1, one-sided differences of both signs,
+    //    over four cells -0.2: passive (a compression the one-sided test alone misses).
     const int w = 30, ng = 2;
     EarthPressureCoefficients kc;
     kc.kx_active = 0.5;
     kc.kx_passive = 3.0;
     kc.ky_given_kx_active_active = kc.ky_given_kx_passive_active = 0.7;
     kc.ky_given_kx_active_passive = kc.ky_given_kx_passive_passive = 2.0;
-    Rows h(w, 1.0), qu(w), qv(w), px(w, 1.0), py(w, 1.0), gn(w, 9.81), nt(w, 1.0);
-    const int slow = 8, fall0 = 16, fall1 = 22;  // u falls over cells fall0 .. fall1
+    Rows h(w, 1.0), qu(w), qv(w), hv(w), px(w, 1.0), py(w, 1.0), gn(w, 9.81), nt(w, 1.0);
+    const int slow = 8, fall0 = 16, fall1 = 22;  // u falls from cell fall0 to cell fall1
     std::vector<double> u(static_cast<std::size_t>(w));
     for (int c = 0; c < w; ++c) {
-        const double x = 0.1 * c;
-        u[static_cast<std::size_t>(c)] =
-            c < fall0    ? x
-            : c <= fall1 ? 0.1 * fall0 - 0.2 * (c - fall0)
-                         : 0.1 * fall0 - 0.2 * (fall1 - fall0) + 0.1 * (c - fall1);
+        const double top = 0.1 * fall0, bottom = top - 0.2 * (fall1 - fall0);
+        u[static_cast<std::size_t>(c)] = c < fall0    ? 0.1 * c
+                                         : c <= fall1 ? top - 0.2 * (c - fall0)
+                                                      : bottom + 0.1 * (c - fall1);
     }
     u[slow] -= 0.5;
     for (int r = 0; r < 3; ++r)
@@ -338,20 +360,24 @@ TEST(UpdateRows, PressureRowIsPassiveOnlyWhereBothOneSidedDifferencesCompress) {
     const auto col0 = [&](Rows& f, int row) { return f.v.data() + row * w + ng; };
     const PressureRowInput in{col0(h, 1),  col0(qu, 1), col0(qv, 1), col0(h, 0),  col0(qv, 0),
                               col0(h, 2),  col0(qv, 2), col0(px, 1), col0(py, 1), col0(gn, 1),
-                              col0(nt, 1), nullptr,     nullptr};
+                              col0(nt, 1), nullptr,     nullptr,     col0(h, 0),  col0(hv, 0),
+                              col0(h, 2),  col0(hv, 2)};
     std::vector<double> out_v(9 * static_cast<std::size_t>(w), -7.0);
     const auto out_at = [&](int a) { return out_v.data() + a * w + ng; };
     const PressureRowOutput out{out_at(0), out_at(1), out_at(2), out_at(3), out_at(4),
                                 out_at(5), out_at(6), out_at(7), out_at(8)};
     const int lo = -ng, hi = w - ng - 1;
     pressure_row(in, out, PressureRowParams{kc, 3.0, 1e-3, false}, lo, hi + 1, lo, hi);
-    for (int c = 1; c + 1 < w; ++c) {  // the end columns see one difference only
-        const bool passive = c > fall0 && c < fall1;
+    for (int c = 2; c + 2 < w; ++c) {  // the end columns see clamped differences
+        const bool passive = c >= fall0 && c <= fall1;
         EXPECT_EQ(out_at(0)[c - ng], passive ? kc.kx_passive : kc.kx_active) << "cell " << c;
         EXPECT_EQ(out_at(1)[c - ng],
                   passive ? kc.ky_given_kx_passive_active : kc.ky_given_kx_active_active)
             << "cell " << c;
     }
-    // The case the central difference got wrong: it is negative before the slow cell.
+    // The cases that tell the rules apart: the central difference alone is negative before
+    // the slow cell, the one-sided differences alone are mixed at the stretch's ends.
     EXPECT_LT(u[slow] - u[slow - 2], 0.0);
+    EXPECT_GT(u[fall0] - u[fall0 - 1], 0.0);
+    EXPECT_GT(u[fall1 + 1] - u[fall1], 0.0);
 }

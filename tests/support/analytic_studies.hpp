@@ -54,8 +54,8 @@ struct SimilarityCase {
 // delta = 0, paraboloid L0 = 3 m, H0 = 0.3 m. Isotropic or Savage-Hutter (active k,
 // phi = 35 deg). Released either already spreading (x_c' = 2 m/s in 1D, L' = 1 m/s:
 // du/dx = 0.25 1/s > 0 everywhere from the start, so the SH regime is unambiguous)
-// or from rest (du/dx = 0 at t = 0: the solver's tie rule picks passive; see
-// docs/verification.md for what that does to the SH case).
+// or from rest (du/dx = 0 at t = 0: the solver's tie rule picks active, and the noise
+// of the scheme decides the regime early on; docs/verification.md, finding 2).
 SimilarityCase similarity_1d(EarthPressureModel model, bool from_rest = false);
 SimilarityCase similarity_2d(EarthPressureModel model, bool from_rest = false);
 

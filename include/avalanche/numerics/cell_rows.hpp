@@ -52,6 +52,9 @@ struct PressureRowInput {
     const double *h, *u, *v;
     const double *h_s, *v_s, *h_n, *v_n;
     const double *px, *py, *gn, *nt, *sx, *sy;
+    // Two rows south and north (depth and y-momentum of the state), for the regime's
+    // wide difference (pressure_row); required unless the pressure is isotropic.
+    const double *h_ss = nullptr, *hv_ss = nullptr, *h_nn = nullptr, *hv_nn = nullptr;
 };
 
 // The invariant bounds of a dry or thin cell, which bounds nothing: u_lo = v_lo =
@@ -75,8 +78,9 @@ struct PressureRowParams {
 };
 
 // The advection's per-cell stage on cells i0 .. i1 - 1 of one row (advection.cpp,
-// Stepper::pressure_row: active where the flow extends, passive where it compresses,
-// i.e. where both one-sided velocity differences are negative;
+// Stepper::pressure_row: active where the flow extends, passive where it compresses:
+// where the central velocity difference is negative and so is either both one-sided
+// difference or the difference over four cells (cell_rows.cpp, pressure_lane);
 // Riemann-invariant bounds u -/+ 2a, v -/+ 2a and the along-surface speed bound of wet
 // cells). The x-differences are clamped to the columns lo and hi. Output pointers
 // address column 0 like the inputs.

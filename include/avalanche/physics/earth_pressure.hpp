@@ -4,8 +4,8 @@
 //   k_x(act/pass) = 2 (1 -/+ sqrt(1 - cos^2 phi (1 + tan^2 delta))) / cos^2 phi - 1
 //   k_y(act/pass) = 1/2 (1 + k_x -/+ sqrt((1 - k_x)^2 + 4 tan^2 delta))
 // Active where the flow extends (du/dx > 0), passive where it compresses; k_y is
-// evaluated with the k_x chosen in the same cell. On the grid du/dx is the minmod of
-// the two one-sided differences (numerics/cell_rows.cpp, pressure_lane).
+// evaluated with the k_x chosen in the same cell. On the grid: passive where the central
+// difference is negative, confirmed at a second scale (numerics/cell_rows.cpp, pressure_lane).
 #include "avalanche/physics/material.hpp"
 
 namespace avalanche {
