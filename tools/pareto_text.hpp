@@ -39,8 +39,10 @@ The presets (`--quality`, include/avalanche/app/quality_preset.hpp) are stated a
 the chute with a 0.5 m base cell: `draft` doubles the cell size and the Courant number
 and advects once per step (SLS), `standard` is the default (the paper's scheme and
 Courant number 0.2, L S L), `fine` halves the cell size at Courant 0.4 with SLS. On the
-chute, draft costs about a tenth of standard for 1.4x its deposit error (runout within a
-cell of 1 m); fine costs 3.2x for half the deposit error.
+chute, draft costs well under a tenth of standard (0.06-0.07 in the last two runs of the
+study: the CPU times of these short runs are noisy) for 1.14x its deposit error (runout
+within a cell of 1 m); fine costs 1.5-2x for 0.6x the deposit error and a fifth of its
+runout error.
 
 Why SLS at Courant 0.4: L S L advects twice per step, each time over half the step, so
 at Courant C every advection runs at Courant C/2; SLS at Courant 0.2 repeats L S L at
@@ -51,21 +53,25 @@ its advection rises (Toro 1989), so the longer advection is both cheaper and, he
 accurate or more: SLS at Courant 0.4 lies on the error/cost front at every cell size of
 all three problems and beats L S L at 0.4 on the similarity solution and the chute (on
 the dam break it trades about 10 % more error for 45 % less time). On the chute at
-0.25 m it runs 1.5x as many steps as L S L at 0.4 to the same stopping time, on a 1.3x
-larger active box, so there it is not cheaper: once the deposit has formed, films just
-above h_min (25 um) left on the 45 deg slope keep sliding at up to 20 m/s (faster than
-any cell of the flow, 13 m/s) and set the time step, where under L S L they slow down
-(2 m/s at t = 6.3 s, when L S L stops). They carry no visible mass (the maps start at 1 cm) but cost steps;
-why the splittings treat them differently is not worked out yet. And its
-deposit error keeps falling with the cell size (0.088, 0.051, 0.029 from 1 m to
-0.25 m) where the L S L runs level off near 0.055-0.065 from 0.5 m on, although the
-reference is itself an L S L run. That difference is not understood yet; the chute's
+0.25 m it now runs as many steps as L S L at 0.4 (730 each) in half the CPU time. Until
+2026-12-02 it ran 1.5x as many: film cells just above h_min (25 um) on the 45 deg slope
+passed no flux in the WAF faces, kept their mass and were accelerated step after step
+to 20 m/s, which set the time step (fixed in the transverse predictor, docs/numerics.md
+step 3; L S L runs had them too, e.g. the bumpy chute of docs/verification.md section
+4 took 1091 steps instead of 759). SLS's deposit error keeps falling with the cell size
+(0.164, 0.128, 0.088 from 1 m to 0.25 m) where the L S L runs level off near 0.13-0.15
+from 0.5 m on, although the reference is itself an L S L run. That difference is not
+understood yet. The reference itself still moves with the cell size: since the
+Savage-Hutter regime rule changed (docs/verification.md, finding 2) the chute's deposit
+gets slightly steeper and shorter on finer cells (runout 51.25, 51.12, 50.81 and 50.47 m
+at 0.5, 0.25, 0.125 and 0.0625 m), so the errors here include that drift and are about
+twice those measured before the change; the chute's
 deposit error also moves by several per cent with round-off (docs/numerics.md,
 "Symmetry and determinism"), so differences of that size between rows are noise. The
 chute's deposit converges slowly in general (the stopping fronts and the shock where the
 tail runs into the deposit are first order), so on that problem refinement buys less
 than on the smooth similarity solution, where halving the cell at Courant 0.4 cuts the
-error 3 to 3.7x. SLS stays stable at the extremes: the extreme-case matrix
+error 2.9 to 3.5x. SLS stays stable at the extremes: the extreme-case matrix
 (tests/regression) runs it at Courant 0.5 on the 80 deg plane, the cliffs and the
 colliding flows, and L S L at Courant numbers up to 0.5. The cell-size factor applies to
 the scene's cell size (`numerics.cell_size`, or the DEM's resolution when automatic);

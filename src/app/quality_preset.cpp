@@ -9,12 +9,12 @@ namespace avalanche {
 // advection per step instead of two) is on the error/cost front at every cell size of
 // all three problems, and beats L S L at Courant 0.4 on the similarity solution and the
 // chute (WAF's numerical diffusion falls as the Courant number of an advection rises), so
-//   draft:    twice the cell size at Courant 0.4, S L S: about a tenth of the standard
-//             cost for 1.4 times its deposit error on the chute;
+//   draft:    twice the cell size at Courant 0.4, S L S: well under a tenth of the
+//             standard cost for 1.1 times its deposit error on the chute;
 //   standard: the defaults (the paper's scheme, WAF/van Leer, L S L at Courant 0.2);
-//   fine:     half the cell size at Courant 0.4, S L S: on the chute half the deposit
-//             error of standard for 3.2 times its cost (L S L at Courant 0.4: 13 % less
-//             error for 2.6 times the cost).
+//   fine:     half the cell size at Courant 0.4, S L S: on the chute 0.6 times the
+//             deposit error of standard for 1.5-2 times its cost (L S L at Courant 0.4:
+//             0.8 times the error for 2.3-3.5 times the cost).
 QualityPreset quality_preset(Quality q) {
     switch (q) {
         case Quality::draft: return {Scheme::waf, Limiter::van_leer, 0.4, 2.0, Splitting::sls};
