@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -33,6 +34,7 @@
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/core/simulation.hpp"
+#include "avalanche/io/enum_names.hpp"
 #include "bench_scenes.hpp"
 #include "run_record.hpp"
 
@@ -52,7 +54,7 @@ struct Options {
     int threads = 0;  // 0: leave OMP_NUM_THREADS / the runtime default
     long steps = -1;  // -1: each case's default
     int repeat = 1;
-    std::string splitting;  // empty: the scene's (the default L S L)
+    std::optional<Splitting> splitting;  // unset: the scene's (the default L S L)
     std::string json;
 };
 
@@ -82,8 +84,10 @@ Options parse(int argc, char** argv) {
             o.repeat = std::stoi(v);
         else if (a == "--json")
             o.json = v;
-        else if (a == "--splitting")
-            o.splitting = v;
+        else if (a == "--splitting") {
+            o.splitting = enum_from_name(kSplittingNames, v);
+            if (!o.splitting) usage("--splitting expects lsl or sls");
+        }
         else
             usage("unknown option " + a);
     }
@@ -92,8 +96,6 @@ Options parse(int argc, char** argv) {
     if (o.scheme != "waf" && o.scheme != "godunov" && o.scheme != "both")
         usage("--scheme expects waf, godunov or both");
     if (o.repeat < 1 || o.threads < 0) usage("--repeat >= 1 and --threads >= 0 expected");
-    if (!o.splitting.empty() && o.splitting != "lsl" && o.splitting != "sls")
-        usage("--splitting expects lsl or sls");
     return o;
 }
 
@@ -168,12 +170,11 @@ RunRecord timed_case(const std::string& case_id, Build build, long step_limit, c
     for (int k = 0; k < opt.repeat; ++k) {
         const auto t0 = Clock::now();
         Scene s = build();
-        if (!opt.splitting.empty())
-            s.numerics.splitting = opt.splitting == "sls" ? Splitting::sls : Splitting::lsl;
+        if (opt.splitting) s.numerics.splitting = *opt.splitting;
         const double scene_seconds = seconds_since(t0);
         r.scene = s.name;
         r.scheme = to_string(s.numerics.scheme);
-        r.splitting = s.numerics.splitting == Splitting::sls ? "sls" : "lsl";
+        r.splitting = enum_name(kSplittingNames, s.numerics.splitting);
         r.nx = s.grid.nx;
         r.ny = s.grid.ny;
         const Outcome o = run_once(s, step_limit);
