@@ -321,10 +321,7 @@ int main(int argc, char** argv) {
     for (Quality q : {Quality::draft, Quality::standard, Quality::fine}) {
         const QualityPreset p = quality_preset(q);
         NumericsParams n;
-        n.scheme = p.scheme;
-        n.limiter = p.limiter;
-        n.cfl = p.cfl;
-        n.splitting = p.splitting;
+        apply_preset_numerics(p, n);
         const double dx = preset_base * p.cell_size_factor;
         ChuteRun r = run_chute(src, dx, n);
         const double err = deposit_error(r, ref);

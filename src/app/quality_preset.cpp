@@ -24,6 +24,13 @@ QualityPreset quality_preset(Quality q) {
     return {};
 }
 
+void apply_preset_numerics(const QualityPreset& p, NumericsParams& n) {
+    n.scheme = p.scheme;
+    n.limiter = p.limiter;
+    n.cfl = p.cfl;
+    n.splitting = p.splitting;
+}
+
 Quality parse_quality(const std::string& text, const std::string& what) {
     if (text == "draft") return Quality::draft;
     if (text == "standard") return Quality::standard;

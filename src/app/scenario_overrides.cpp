@@ -68,10 +68,7 @@ void apply_release_overrides(Scenario& s, const ScenarioOverrides& o) {
 // applied after this, win.
 void apply_quality(Scenario& s, Quality q) {
     const QualityPreset p = quality_preset(q);
-    s.numerics.scheme = p.scheme;
-    s.numerics.limiter = p.limiter;
-    s.numerics.cfl = p.cfl;
-    s.numerics.splitting = p.splitting;
+    apply_preset_numerics(p, s.numerics);
     if (s.cell_size > 0.0)
         s.cell_size *= p.cell_size_factor;
     else

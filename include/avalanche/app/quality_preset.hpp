@@ -23,6 +23,9 @@ struct QualityPreset {
 };
 
 QualityPreset quality_preset(Quality q);
+// Sets the preset's numerical choices in n: scheme, limiter, Courant number, splitting.
+// The cell size is the caller's to scale (a scenario's, or a study's level).
+void apply_preset_numerics(const QualityPreset& p, NumericsParams& n);
 // "draft" | "standard" | "fine"; throws ConfigError naming `what` otherwise.
 Quality parse_quality(const std::string& text, const std::string& what);
 std::string to_string(Quality q);
