@@ -128,8 +128,9 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
                                     const PressureRowParams& p, int i, int im, int ip, int imm,
                                     int ipp) {
     const double hmin = p.h_min;
-    const auto vel = [hmin](double hh, double quotient) {  // the quotient q / hh
-        return (hh >= hmin) & (hh > 0.0) ? quotient : 0.0;
+    const auto is_wet = [hmin](double hh) { return (hh >= hmin) & (hh > 0.0); };
+    const auto vel = [&](double hh, double quotient) {  // the quotient q / hh
+        return is_wet(hh) ? quotient : 0.0;
     };
     // A vanishing difference (at rest, or a uniformly moving block) counts as
     // extending: passive there made a mass released from rest start with the passive k
@@ -167,10 +168,8 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
         // multiplied out by both (positive) depths, so that no division is needed. A
         // thin or dry side counts as at rest (momentum 0 over depth 1), as vel() has it.
         const double h_ss = in.h_ss[i], h_nn = in.h_nn[i];
-        const bool wet_ss = (h_ss >= hmin) & (h_ss > 0.0);
-        const bool wet_nn = (h_nn >= hmin) & (h_nn > 0.0);
-        const double q_ss = vel(h_ss, in.hv_ss[i]), d_ss = wet_ss ? h_ss : 1.0;
-        const double q_nn = vel(h_nn, in.hv_nn[i]), d_nn = wet_nn ? h_nn : 1.0;
+        const double q_ss = vel(h_ss, in.hv_ss[i]), d_ss = is_wet(h_ss) ? h_ss : 1.0;
+        const double q_nn = vel(h_nn, in.hv_nn[i]), d_nn = is_wet(h_nn) ? h_nn : 1.0;
         const double lo_y = q_ss * d_nn, hi_y = q_nn * d_ss;  // v_ss, v_nn times d_ss d_nn
         const bool x_active = active(extends(vel(in.h[imm], in.u[imm]), vel(in.h[ipp], in.u[ipp])),
                                      vel(in.h[im], in.u[im]), uc, vel(in.h[ip], in.u[ip]));
@@ -190,7 +189,7 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
     // produce (the invariant domain of the system); the along-surface speed plus the
     // along-surface dry-front celerity 2 sqrt(k g_n h_n) is frame-independent
     // (docs/numerics.md, step 8). Dry and thin cells bound nothing.
-    const bool wet = (hh >= hmin) & (hh > 0.0);
+    const bool wet = is_wet(hh);
     const double u = in.u[i], v = in.v[i];  // hu / hh, hv / hh
     // The celerities the first-order faces take (face_flux_rows.hpp), also the bounds' a.
     const double cel_x = side_celerity(hh, cx, hmin), cel_y = side_celerity(hh, cy, hmin);
