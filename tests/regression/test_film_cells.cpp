@@ -35,17 +35,18 @@ Film run(Scheme scheme, Splitting splitting) {
     const Grid g = analytic::box_grid(0.0, 20.0, 0.0, 10.0, 0.5);
     const TerrainFields t = analytic::plane_terrain(g, 45.0, 9.81);
     const int fi = 10, fj = 10;  // the film cell, x = 5.25 m, y = 5.25 m
-    const auto in_film = [&](double xa, double ya) {
-        return std::abs(xa - g.dx * fi) < 1e-9 && std::abs(ya - g.dy * fj) < 1e-9;
+    // Is the point (x, y) inside the film cell? Cell averages and velocities both ask.
+    const auto in_film = [&](double x, double y) {
+        return static_cast<int>(std::floor(x / g.dx)) == fi &&
+               static_cast<int>(std::floor(y / g.dy)) == fj;
     };
     State s = analytic::make_state(
         g,
-        [&](double xa, double, double ya, double) {
-            return in_film(xa, ya) ? 1.0005 * kHMin : 0.9 * kHMin;
+        [&](double xa, double xb, double ya, double yb) {
+            return in_film(0.5 * (xa + xb), 0.5 * (ya + yb)) ? 1.0005 * kHMin : 0.9 * kHMin;
         },
         [&](double x, double y) {
-            const bool film =
-                std::abs(x - (fi + 0.5) * g.dx) < 1e-9 && std::abs(y - (fj + 0.5) * g.dy) < 1e-9;
+            const bool film = in_film(x, y);
             return std::pair<double, double>{film ? 5.0 : 0.0, film ? 0.5 : 0.0};
         });
     MaterialParams m;  // Savage-Hutter, phi = 35, delta = 20 deg
