@@ -148,19 +148,33 @@ void bm_state_velocity_row(benchmark::State& state) {
 }
 BENCHMARK(bm_state_velocity_row)->ComputeStatistics("min", min_of);
 
+void bm_regime_row(benchmark::State& state) {
+    Layer w;
+    std::vector<RegimeFlags> regime(static_cast<std::size_t>(kRow + 2 * kPad), kRegimeAtStart);
+    const RegimeRowInput in{w.h.mid(),  w.hu.mid(),  w.hv.mid(),  w.h.at(-1), w.hv.at(-1),
+                            w.h.at(1),  w.hv.at(1),  w.h.at(-1),  w.hv.at(-1), w.h.at(1),
+                            w.hv.at(1)};  // rows -/+ 2 stand in as -/+ 1
+    run_per_item(state, kRow, [&] {
+        regime_row(in, regime.data() + kPad, 1e-3, 0, kRow, -kPad, kRow + kPad - 1);
+    });
+    state.SetLabel("per cell");
+}
+BENCHMARK(bm_regime_row)->ComputeStatistics("min", min_of);
+
 void bm_pressure_row(benchmark::State& state) {
     Layer w;
     Rows cx, cy, ulo, uhi, vlo, vhi, shi, ax, ay;
-    const PressureRowInput in{w.h.mid(),  w.u.mid(),  w.v.mid(),  w.h.at(-1), w.v.at(-1),
-                              w.h.at(1),  w.v.at(1),  w.px.mid(), w.py.mid(), w.gn.mid(),
-                              w.nt.mid(), w.sx.mid(), w.sy.mid(), w.h.at(-1), w.hv.at(-1),
-                              w.h.at(1),  w.hv.at(1)};  // rows -/+ 2 stand in as -/+ 1
+    std::vector<RegimeFlags> regime(static_cast<std::size_t>(kRow + 2 * kPad));
+    for (std::size_t i = 0; i < regime.size(); ++i) regime[i] = static_cast<RegimeFlags>(i % 4);
+    const PressureRowInput in{w.h.mid(),  w.u.mid(),  w.v.mid(),  w.px.mid(),
+                              w.py.mid(), w.gn.mid(), w.nt.mid(), w.sx.mid(),
+                              w.sy.mid(), regime.data() + kPad};
     const PressureRowOutput out{cx.mid(),  cy.mid(),  ulo.mid(), uhi.mid(), vlo.mid(),
                                 vhi.mid(), shi.mid(), ax.mid(),  ay.mid()};
     const MaterialParams m;
     const EarthPressureCoefficients k = earth_pressure_coefficients(m);
     const PressureRowParams p{k, std::max(k.kx_active, k.kx_passive), 1e-3, false};
-    run_per_item(state, kRow, [&] { pressure_row(in, out, p, 0, kRow, -kPad, kRow + kPad - 1); });
+    run_per_item(state, kRow, [&] { pressure_row(in, out, p, 0, kRow); });
     state.SetLabel("per cell, Savage-Hutter, DEM frame");
 }
 BENCHMARK(bm_pressure_row)->ComputeStatistics("min", min_of);

@@ -167,21 +167,35 @@ inline constexpr const char* kFindingsText = R"(
    steeper and shorter as the cells got smaller (runout 50.75, 50.62, 50.06, 48.91 m at 0.5, 0.25, 0.125, 0.0625
    m; deposit L1 distance to the 0.125 m run 0.20, 0.18, 0.12 at 1, 0.5, 0.25 m):
    in a decelerating deposit the velocities are small and noisy, and it made every
-   velocity extremum active. With the confirmed central difference: runout 51.50,
-   51.25, 51.12, 50.81 m, L1 distance 0.105, 0.062, 0.049 (the central difference
-   alone: 51.50, 51.25, 51.38, 51.31 m; 0.093, 0.058, 0.030). Both caps converge
-   (section 2, "1D cap from rest" and the Godunov rows;
-   `SimilaritySolution.SavageHutterFromRest`,
-   `SimilaritySolution.GodunovSavageHutterConvergesToFineCells`). **Still open:**
-   Godunov on the cap released from rest converges to dx = 0.05 and then its error
-   rises again (section 2's from-rest table). The passive cells are then at the
-   smeared rear edge: its thin cells (h ~ 1e-5 to 1e-2 m over ~20 cells) feel too
-   small a pressure gradient, move faster than the body behind which they trail
-   (2.01 against 1.80 m/s at t = 1 s, dx = 0.025) and compress into it, which is a
-   compression by the model's own rule; the passive pressure then pushes the rear
-   back. WAF, whose rear edge is sharper, does not show it to dx = 0.025. The chute's
-   slower convergence with the confirmed rule than with the central difference alone
-   (0.049 against 0.030 at 0.25 m) is not worked out either.
+   velocity extremum active. With the confirmed central difference, and unconfirmed
+   cells taken for active (2026-12-02, first version): runout 51.50, 51.25, 51.12,
+   50.81 m, L1 distance 0.105, 0.062, 0.049 (the central difference alone: 51.50,
+   51.25, 51.38, 51.31 m; 0.093, 0.058, 0.030), and Godunov on the cap released from
+   rest converged to dx = 0.05 and then rose again (E1 1.8e-2 -> 9.3e-2 at 0.025). In
+   a decelerating deposit and at a smeared rear edge the strain rate is near zero and
+   the sign of its central difference is noise: 10-20 % of the chute's wet cells were
+   compressing by the central difference but unconfirmed after t = 4.5 s. The model
+   does not decide the regime there, and neither answer held: taken for active, the
+   chute's deposit drifted with the cell size; taken for passive (at the central
+   difference alone) the patterns grew. **Now a cell whose compression nothing
+   confirms keeps the regime it had** (active at the start; a regime per cell carried
+   from advection to advection, saved in checkpoints; docs/numerics.md step 2): the
+   chute's runout 51.50, 51.25, 51.12, 50.94 m, L1 distance 0.103, 0.056, 0.041; Godunov
+   on the cap from rest E1 6.6e-2, 3.5e-2, 1.8e-2, 1.6e-2 at dx 0.2 to 0.025 (no longer
+   rising); the caps otherwise unchanged (WAF from rest 2.3e-4, Godunov released 8.0e-3
+   at 0.025). `UpdateRows.RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept`
+   checks the rule on a constructed row. Tried and not kept: keeping the regime also
+   where the central difference extends but nothing confirms it (symmetric
+   hysteresis): the chute converged as with the central difference alone (runout
+   51.50, 51.25, 51.38, 51.56 m; L1 0.106, 0.057, 0.031), but Godunov's cap from rest
+   diverged (E1 0.42 at 0.025): the rear edge's passive cells stayed passive. Keeping
+   the regime of cells at rest only changed nothing. **Still open:** the chute's deposit
+   still converges more slowly than with the central difference alone (L1 0.041
+   against 0.030 at 0.25 m, runout 0.3 m shorter at 0.125 m); Godunov's cap from rest
+   barely improves from dx 0.05 to 0.025 (1.8e-2, 1.6e-2): its smeared rear edge's thin
+   cells (h ~ 1e-5 to 1e-2 m over ~20 cells) feel too small a pressure gradient, move
+   faster than the body behind which they trail (2.01 against 1.80 m/s at t = 1 s) and
+   compress into it, a compression by the model's own rule.
 3. **Open edges with SH:** ghost cells copy the edge cell, so their du/dx = 0;
    while that counted as passive, an outflow that is subcritical for k_pass
    reflected (seen with the smooth case on [-6, 6] m). A vanishing difference now

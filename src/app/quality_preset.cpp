@@ -10,7 +10,7 @@ namespace avalanche {
 // all three problems, and beats L S L at Courant 0.4 on the similarity solution and the
 // chute (WAF's numerical diffusion falls as the Courant number of an advection rises), so
 //   draft:    twice the cell size at Courant 0.4, S L S: well under a tenth of the
-//             standard cost for 1.1 times its deposit error on the chute;
+//             standard cost for 1.2 times its deposit error on the chute;
 //   standard: the defaults (the paper's scheme, WAF/van Leer, L S L at Courant 0.2);
 //   fine:     half the cell size at Courant 0.4, S L S: on the chute 0.6 times the
 //             deposit error of standard for 1.5-2 times its cost (L S L at Courant 0.4:

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "avalanche/core/error.hpp"
+#include "avalanche/numerics/cell_rows.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -57,6 +58,9 @@ double total_volume(const State& s, const Grid& g) {
 }
 
 namespace {
+
+// The checkpoint's copy of the cells' Savage-Hutter regimes (Stepper::regime).
+constexpr const char* kRegimeDataset = "solver/regime";
 
 // Boxes smaller than this are scanned or copied on one thread (stepper.hpp: waking
 // the team costs more than a pass over a few thousand cells).
@@ -168,6 +172,14 @@ void Simulation::resume(const LoopState& loop, const std::vector<double>& h, con
     stepper_.reset_active_box(state_);
     stepper_.set_outflow_volume(loop.outflow_volume);
     if (std::isfinite(loop.energy_budget)) stepper_.set_energy_budget(loop.energy_budget);
+    const std::vector<std::int64_t>& regime =
+        observers.integer(kRegimeDataset, static_cast<long long>(n));
+    for (const std::int64_t r : regime)
+        if (r < 0 || r > kRegimeAtStart)
+            throw InputError("checkpoint", "dataset " + std::string(kRegimeDataset) +
+                                               " holds " + std::to_string(r) +
+                                               ", expected regime flags 0 to 3");
+    stepper_.set_regime(std::vector<RegimeFlags>(regime.begin(), regime.end()));
     for (auto* o : observers_) o->restore(observers);
     loop_ = loop;
     resumed_ = true;
@@ -235,6 +247,13 @@ RunStatistics Simulation::run() {
         L.energy_budget = stepper_.energy_budget();
         SimulationCheckpoint c{L, state_, {}};
         for (auto* o : observers_) o->save(c.observers);
+        // The solver's own carried state besides the fields: the cells' regimes.
+        const std::vector<RegimeFlags>& regime = stepper_.regime();
+        std::vector<std::int64_t>& saved = c.observers.integers[kRegimeDataset];
+        if (regime.empty())  // no advection yet: every cell starts active
+            saved.assign(state_.h.raw().size(), kRegimeAtStart);
+        else
+            saved.assign(regime.begin(), regime.end());
         write_checkpoint_(c);
     };
 

@@ -23,7 +23,7 @@ using detail::write_attribute;
 namespace {
 
 constexpr const char* kFormat = "avalanche-hazard checkpoint";
-constexpr std::int64_t kFormatVersion = 1;
+constexpr std::int64_t kFormatVersion = 2;  // 2: the solver regime (2026-12-02)
 
 // ---------------------------------------------------------------- writing
 

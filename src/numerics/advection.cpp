@@ -89,39 +89,44 @@ void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
 
 // ---------------------------------------------------------------- stage 1: per cell
 
-// Pressure coefficients k p of row r (active where the flow extends, passive where it
-// compresses) and the invariant bounds of the update's clamp, columns [ia, ib).
+// Pressure coefficients k p of row r in the regime of each cell (update_regime) and the
+// invariant bounds of the update's clamp, columns [ia, ib).
 void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& w) const {
     const bool metric = terrain_.has_metric;
-    const int ng = kGhostLayers;
-    // Central differences, clamped at the padding.
-    const int jm = std::max(r - 1, -ng), jp = std::min(r + 1, grid_.ny + ng - 1);
-    const int jmm = std::max(r - 2, -ng), jpp = std::min(r + 2, grid_.ny + ng - 1);
+    const bool isotropic = material_.earth_pressure == EarthPressureModel::isotropic;
     // Inputs and outputs address column 0 of row r.
     const std::ptrdiff_t o = w.k(0, r);
     const PressureRowInput in{s.h.row(r),
                               w.su.data() + o,
                               w.sv.data() + o,
-                              s.h.row(jm),
-                              w.sv.data() + w.k(0, jm),
-                              s.h.row(jp),
-                              w.sv.data() + w.k(0, jp),
                               terrain_.px.row(r),
                               terrain_.py.row(r),
                               terrain_.gn.row(r),
                               terrain_.normal_thickness.row(r),
                               metric ? terrain_.sx.row(r) : nullptr,
                               metric ? terrain_.sy.row(r) : nullptr,
-                              s.h.row(jmm),
-                              s.hv.row(jmm),
-                              s.h.row(jpp),
-                              s.hv.row(jpp)};
+                              isotropic ? nullptr : regime_.data() + s.h.index(0, r)};
     const PressureRowOutput out{w.cx.data() + o,      w.cy.data() + o,   w.u_lo.data() + o,
                                 w.u_hi.data() + o,    w.v_lo.data() + o, w.v_hi.data() + o,
                                 w.speed_hi.data() + o, w.ax.data() + o,    w.ay.data() + o};
-    const PressureRowParams p{k_, k_max_, h_min_,
-                              material_.earth_pressure == EarthPressureModel::isotropic};
-    avalanche::pressure_row(in, out, p, ia, ib, -ng, grid_.nx + ng - 1);
+    const PressureRowParams p{k_, k_max_, h_min_, isotropic};
+    avalanche::pressure_row(in, out, p, ia, ib);
+}
+
+void Stepper::update_regime(const State& s, int ia, int ib, int ja, int jb) {
+    const int ng = kGhostLayers;
+    if (regime_.size() != s.h.raw().size()) regime_.assign(s.h.raw().size(), kRegimeAtStart);
+    // Each cell reads only its own previous regime: the rows go to the threads in any order.
+#pragma omp parallel for schedule(static) if (threaded_)
+    for (int r = ja; r < jb; ++r) {
+        // Differences across rows, clamped at the padding.
+        const int jm = std::max(r - 1, -ng), jp = std::min(r + 1, grid_.ny + ng - 1);
+        const int jmm = std::max(r - 2, -ng), jpp = std::min(r + 2, grid_.ny + ng - 1);
+        const RegimeRowInput in{s.h.row(r),   s.hu.row(r),  s.hv.row(r),   s.h.row(jm),
+                                s.hv.row(jm), s.h.row(jp),  s.hv.row(jp),  s.h.row(jmm),
+                                s.hv.row(jmm), s.h.row(jpp), s.hv.row(jpp)};
+        regime_row(in, regime_.data() + s.h.index(0, r), h_min_, ia, ib, -ng, grid_.nx + ng - 1);
+    }
 }
 
 // ---------------------------------------------------------------- one strip
@@ -157,7 +162,7 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
     const int q1 = std::min(std::max({Je + 1, x1 + 1, y1, xp1}), pr1);
 
     // 1. The velocity quotients of the state, once per cell, for the pressure stage
-    // (rows q0 - 1 .. q1) and the first-order fluxes on the state (rows J - 4 .. Je + 2);
+    // (rows q0 .. q1 - 1) and the first-order fluxes on the state (rows J - 4 .. Je + 2);
     // then the pressure coefficients and invariant bounds.
     const int v0 = std::max(J - 4, -ng), v1 = std::min(Je + 4, ny + ng);
     for (int r = std::max(v0, w.vel_end); r < v1; ++r) {
@@ -424,6 +429,13 @@ void Stepper::advect(State& s, double tau) {
     // updated rows wait in the thread's buffers until every block is done. The other
     // strips write theirs into s at once (advect_strip, step 7), so no second state
     // is kept.
+    // The regime of every cell the pressure stage computes (advect_strip, pr0 .. pr1
+    // and pc0 .. pc1), from the state before any strip writes into it.
+    if (material_.earth_pressure != EarthPressureModel::isotropic) {
+        const int ng = kGhostLayers;
+        update_regime(s, std::max(b.i0 - ng, -ng), std::min(b.i1 + ng, grid_.nx + ng),
+                      std::max(b.j0 - ng, -ng), std::min(b.j1 + ng, grid_.ny + ng));
+    }
     const int strips = (b.j1 - b.j0 + kStripRows - 1) / kStripRows;
     const auto block_of = [strips](int t, int n) {  // strips [first, last) of thread t of n
         return std::pair<int, int>{strips * t / n, strips * (t + 1) / n};

@@ -119,62 +119,110 @@ double cfl_rate_row(const double* h, const double* hu, const double* hv, const d
     return cfl_rate_clone(h, hu, hv, px, py, kx, ky, dx, dy, h_min, i0, i1);
 }
 
+// ---------------------------------------------------------------- regime row
+
+namespace {
+
+// The regime of cell i from its previous regime: x from the cells im, ip (one away)
+// and imm, ipp (two away) of the row, y from the rows s, n, ss, nn. A velocity is a
+// (momentum, depth) pair, a thin or dry cell at rest (momentum 0 over depth 1), and
+// differences of velocities are compared multiplied out by both (positive) depths, so
+// that no division is needed.
+AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime, double hmin,
+                                  int i, int im, int ip, int imm, int ipp) {
+    // Whether the velocity does not fall from a to b: b - a >= 0 up to a relative
+    // 1e-12, so that round-off cannot make a vanishing difference (at rest, or a
+    // uniformly moving block) compress.
+    const auto extends = [](double qa, double da, double qb, double db) {
+        const double lo = qa * db, hi = qb * da;  // a and b times both depths
+        return hi - lo >= -1e-12 * std::max(std::abs(lo), std::abs(hi)) ? 1.0 : 0.0;
+    };
+    // Passive where the central difference compresses and a second scale confirms it:
+    // both one-sided differences, or the difference over four cells. The central
+    // difference alone does not see the cell's own velocity, while the cell's pressure
+    // acts on exactly its two neighbours: a passive cell pushed them apart and turned
+    // the cells two away passive, and patterns of passive cells grew inside spreading
+    // flows (similarity cap, docs/verification.md finding 2). Neither confirmation is
+    // moved by that push. Active where the central difference extends. A central
+    // compression that nothing confirms decides nothing: the cell keeps its regime.
+    // (Taking it for active there, as the rule did until 2026-12-02, let a decelerating
+    // deposit, whose small velocities make such cells common, spread less and less as
+    // the cells got smaller; taking it for passive grew the patterns again.)
+    const auto is_wet = [hmin](double hh) { return (hh >= hmin) & (hh > 0.0); };
+    const auto q_of = [&](double hh, double q) { return is_wet(hh) ? q : 0.0; };
+    const auto d_of = [&](double hh) { return is_wet(hh) ? hh : 1.0; };
+    // The new regime (1 active, 0 passive, as doubles like everything else in the loop)
+    // from the previous one and the cells ll, l, c, r, rr of a direction: depths h and
+    // momenta q.
+    const auto next = [&](double was_active, double hll, double qll, double hl, double ql,
+                          double hc, double qc, double hr, double qr, double hrr, double qrr) {
+        const double Qll = q_of(hll, qll), Dll = d_of(hll), Ql = q_of(hl, ql), Dl = d_of(hl);
+        const double Qc = q_of(hc, qc), Dc = d_of(hc), Qr = q_of(hr, qr), Dr = d_of(hr);
+        const double Qrr = q_of(hrr, qrr), Drr = d_of(hrr);
+        // 1 or 0 each.
+        const double central = extends(Ql, Dl, Qr, Dr);
+        const double confirmed =
+            std::max((1.0 - extends(Ql, Dl, Qc, Dc)) * (1.0 - extends(Qc, Dc, Qr, Dr)),
+                     1.0 - extends(Qll, Dll, Qrr, Drr));
+        return std::max(central, (1.0 - confirmed) * was_active);
+    };
+    const double hh = in.h[i];
+    const double was = static_cast<double>(regime[i]);
+    const double was_y = was >= kRegimeYActive ? 1.0 : 0.0, was_x = was - kRegimeYActive * was_y;
+    const double x_active = next(was_x, in.h[imm], in.hu[imm], in.h[im], in.hu[im], hh, in.hu[i],
+                                 in.h[ip], in.hu[ip], in.h[ipp], in.hu[ipp]);
+    const double y_active = next(was_y, in.h_ss[i], in.hv_ss[i], in.h_s[i], in.hv_s[i], hh,
+                                 in.hv[i], in.h_n[i], in.hv_n[i], in.h_nn[i], in.hv_nn[i]);
+    const double now = kRegimeXActive * x_active + kRegimeYActive * y_active;
+    regime[i] = static_cast<RegimeFlags>(is_wet(hh) ? now : double{kRegimeAtStart});
+}
+
+// Without tree-PRE: GCC 12 otherwise carries loads of one cell's neighbours over to the
+// next cell, a loop-carried value its vectoriser rejects ("unknown def-use cycle"), and
+// the loop stayed scalar: 10.6-29 ns per cell against 3.5 (bench_row_kernels).
+__attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void regime_row_clone(const RegimeRowInput& input, RegimeFlags* regime,
+                                            double h_min, int i0, int i1, int lo, int hi) {
+    // A local copy, so that GCC need not prove that the stores through regime leave the
+    // caller's row pointers alone.
+    const RegimeRowInput in = input;
+    // The cells whose differences need no clamp (vectorised), then those within two
+    // columns of the padding columns lo and hi, clamped.
+    const int a = std::min(std::max(i0, lo + 2), i1), e = std::max(std::min(i1, hi - 1), a);
+#pragma omp simd
+    for (int i = a; i < e; ++i) regime_lane(in, regime, h_min, i, i - 1, i + 1, i - 2, i + 2);
+    const auto clamped = [&](int i) {
+        regime_lane(in, regime, h_min, i, std::max(i - 1, lo), std::min(i + 1, hi),
+                    std::max(i - 2, lo), std::min(i + 2, hi));
+    };
+    for (int i = i0; i < a; ++i) clamped(i);
+    for (int i = e; i < i1; ++i) clamped(i);
+}
+
+}  // namespace
+
+void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, int i0, int i1,
+                int lo, int hi) noexcept {
+    regime_row_clone(in, regime, h_min, i0, i1, lo, hi);
+}
+
 // ---------------------------------------------------------------- pressure row
 
 namespace {
 
 template <bool Isotropic, bool Metric>
 AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRowOutput& out,
-                                    const PressureRowParams& p, int i, int im, int ip, int imm,
-                                    int ipp) {
+                                    const PressureRowParams& p, int i) {
     const double hmin = p.h_min;
-    const auto is_wet = [hmin](double hh) { return (hh >= hmin) & (hh > 0.0); };
-    const auto vel = [&](double hh, double quotient) {  // the quotient q / hh
-        return is_wet(hh) ? quotient : 0.0;
-    };
-    // A vanishing difference (at rest, or a uniformly moving block) counts as
-    // extending: passive there made a mass released from rest start with the passive k
-    // everywhere and grow a period-4 pattern of regimes, with errors that rose under
-    // refinement (docs/verification.md, finding 2). "Vanishing" is relative (1e-12 of
-    // the velocities), so round-off cannot flip it.
-    const auto extends = [](double lo, double hi) {
-        return hi - lo >= -1e-12 * std::max(std::abs(lo), std::abs(hi));
-    };
     const double hh = in.h[i];
     double cx, cy;
     if constexpr (Isotropic) {
         cx = in.px[i];
         cy = in.py[i];
     } else {
-        // Active where the flow extends (du/dx > 0), passive where it compresses
-        // (Wang & Li 2017 after eq. 3). Passive takes the central difference
-        // u[i+1] - u[i-1] < 0 confirmed at a second scale: both one-sided differences
-        // < 0, or the difference over four cells u[i+2] - u[i-2] < 0.
-        // The central difference alone does not see the cell's own velocity, while the
-        // cell's pressure acts on exactly its two neighbours: a passive cell pushed
-        // them apart and turned the cells two away passive, and patterns of passive
-        // cells grew inside spreading flows with errors that rose under refinement
-        // (similarity cap, docs/verification.md finding 2). Neither confirmation is
-        // moved by that push (the cell's own velocity and u[i+/-2] stay), so a pattern
-        // cannot feed itself. Either alone is not enough: the one-sided differences
-        // alone make every velocity extremum active, and in a decelerating deposit,
-        // where the velocities are small and noisy, the pile then spread less and less
-        // as the cells got smaller (parametric chute).
-        const auto active = [&](bool wide_extends, double l, double c, double r) {
-            return extends(l, r) | ((extends(l, c) | extends(c, r)) & wide_extends);
-        };
-        const double uc = vel(hh, in.u[i]), vc = vel(hh, in.v[i]);
-        // The rows two away carry momenta, not quotients: extends() of their velocities
-        // multiplied out by both (positive) depths, so that no division is needed. A
-        // thin or dry side counts as at rest (momentum 0 over depth 1), as vel() has it.
-        const double h_ss = in.h_ss[i], h_nn = in.h_nn[i];
-        const double q_ss = vel(h_ss, in.hv_ss[i]), d_ss = is_wet(h_ss) ? h_ss : 1.0;
-        const double q_nn = vel(h_nn, in.hv_nn[i]), d_nn = is_wet(h_nn) ? h_nn : 1.0;
-        const double lo_y = q_ss * d_nn, hi_y = q_nn * d_ss;  // v_ss, v_nn times d_ss d_nn
-        const bool x_active = active(extends(vel(in.h[imm], in.u[imm]), vel(in.h[ipp], in.u[ipp])),
-                                     vel(in.h[im], in.u[im]), uc, vel(in.h[ip], in.u[ip]));
-        const bool y_active =
-            active(extends(lo_y, hi_y), vel(in.h_s[i], in.v_s[i]), vc, vel(in.h_n[i], in.v_n[i]));
+        // The cell's regime (regime_row): active where the flow extends, passive where
+        // it compresses (Wang & Li 2017 after eq. 3).
+        const bool x_active = (in.regime[i] & kRegimeXActive) != 0;
+        const bool y_active = (in.regime[i] & kRegimeYActive) != 0;
         const EarthPressureCoefficients& k = p.k;
         const double kx = x_active ? k.kx_active : k.kx_passive;
         const double ky =
@@ -189,7 +237,7 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
     // produce (the invariant domain of the system); the along-surface speed plus the
     // along-surface dry-front celerity 2 sqrt(k g_n h_n) is frame-independent
     // (docs/numerics.md, step 8). Dry and thin cells bound nothing.
-    const bool wet = is_wet(hh);
+    const bool wet = (hh >= hmin) & (hh > 0.0);
     const double u = in.u[i], v = in.v[i];  // hu / hh, hv / hh
     // The celerities the first-order faces take (face_flux_rows.hpp), also the bounds' a.
     const double cel_x = side_celerity(hh, cx, hmin), cel_y = side_celerity(hh, cy, hmin);
@@ -212,50 +260,27 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
 template <bool Isotropic, bool Metric>
 AVALANCHE_SIMD_CLONES void pressure_row_clone(const PressureRowInput& in,
                                               const PressureRowOutput& out,
-                                              const PressureRowParams& params, int i0, int i1, int lo,
-                                              int hi) {
+                                              const PressureRowParams& params, int i0, int i1) {
     // A local copy: the stores through out could alias the caller's parameters, and
     // GCC then reloads them per cell and leaves the loop scalar (it was 18 % of a step).
     const PressureRowParams p = params;
-    // Central differences along the row, clamped at the padding columns lo and hi.
-    int a = i0, e = i1;
-    if (a < e && a == lo) {
-        pressure_lane<Isotropic, Metric>(in, out, p, a, a, std::min(a + 1, hi), a,
-                                         std::min(a + 2, hi));
-        ++a;
-    }
-    if (a < e && e - 1 == hi) {
-        pressure_lane<Isotropic, Metric>(in, out, p, e - 1, std::max(e - 2, lo), e - 1,
-                                         std::max(e - 3, lo), e - 1);
-        --e;
-    }
-    // The second neighbours clamped too (the first interior cell's i - 2 is lo).
-    if (a < e && a == lo + 1) {
-        pressure_lane<Isotropic, Metric>(in, out, p, a, a - 1, a + 1, lo, std::min(a + 2, hi));
-        ++a;
-    }
-    if (a < e && e == hi) {
-        pressure_lane<Isotropic, Metric>(in, out, p, e - 1, e - 2, e, std::max(e - 3, lo), hi);
-        --e;
-    }
 #pragma omp simd
-    for (int i = a; i < e; ++i)
-        pressure_lane<Isotropic, Metric>(in, out, p, i, i - 1, i + 1, i - 2, i + 2);
+    for (int i = i0; i < i1; ++i) pressure_lane<Isotropic, Metric>(in, out, p, i);
 }
 
 }  // namespace
 
 void pressure_row(const PressureRowInput& in, const PressureRowOutput& out,
-                  const PressureRowParams& p, int i0, int i1, int lo, int hi) noexcept {
+                  const PressureRowParams& p, int i0, int i1) noexcept {
     const bool metric = in.sx != nullptr;
     if (p.isotropic && metric)
-        pressure_row_clone<true, true>(in, out, p, i0, i1, lo, hi);
+        pressure_row_clone<true, true>(in, out, p, i0, i1);
     else if (p.isotropic)
-        pressure_row_clone<true, false>(in, out, p, i0, i1, lo, hi);
+        pressure_row_clone<true, false>(in, out, p, i0, i1);
     else if (metric)
-        pressure_row_clone<false, true>(in, out, p, i0, i1, lo, hi);
+        pressure_row_clone<false, true>(in, out, p, i0, i1);
     else
-        pressure_row_clone<false, false>(in, out, p, i0, i1, lo, hi);
+        pressure_row_clone<false, false>(in, out, p, i0, i1);
 }
 
 // ---------------------------------------------------------------- velocity quotients

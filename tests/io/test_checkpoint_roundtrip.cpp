@@ -244,5 +244,50 @@ TEST(CheckpointRoundTrip, ReadingRefusesFilesThatAreNotCheckpoints) {
     }
 }
 
+TEST(CheckpointRoundTrip, ResumeRefusesARegimeThatIsNotFlags) {
+    // The cells' Savage-Hutter regimes (Stepper::regime) travel with the checkpoint; a
+    // resumed run takes them, and refuses a dataset that is missing, has another length
+    // or holds a value that is not a regime (0 to 3).
+    const Scene s;
+    LoopState loop;
+    State state = s.initial;
+    CheckpointData saved;
+    bool taken = false;
+    {
+        Simulation sim(s.grid, s.terrain, s.scenario.material, s.scenario.numerics, s.initial,
+                       s.h_min);
+        sim.set_checkpointing(0.3, [&](const SimulationCheckpoint& c) {
+            if (taken) return;
+            loop = c.loop;
+            state = c.state;
+            saved = c.observers;
+            taken = true;
+        });
+        sim.run();
+    }
+    ASSERT_TRUE(taken);
+    const auto& regime = saved.integers.at("solver/regime");
+    ASSERT_EQ(regime.size(), state.h.raw().size());
+    long passive = 0;
+    for (const std::int64_t r : regime) passive += r != 3;
+    EXPECT_GT(passive, 0) << "the checkpoint should hold some passive cells";
+
+    const auto resume_with = [&](const CheckpointData& observers) {
+        Simulation sim(s.grid, s.terrain, s.scenario.material, s.scenario.numerics, s.initial,
+                       s.h_min);
+        sim.resume(loop, state.h.raw(), state.hu.raw(), state.hv.raw(), observers);
+        return std::vector<std::int64_t>(sim.stepper().regime().begin(),
+                                         sim.stepper().regime().end());
+    };
+    EXPECT_EQ(resume_with(saved), regime);
+    CheckpointData bad = saved;
+    bad.integers["solver/regime"][7] = 7;
+    EXPECT_THROW(resume_with(bad), InputError);
+    bad.integers["solver/regime"].pop_back();
+    EXPECT_THROW(resume_with(bad), InputError);
+    bad.integers.erase("solver/regime");
+    EXPECT_THROW(resume_with(bad), InputError);
+}
+
 }  // namespace
 }  // namespace avalanche

@@ -213,7 +213,7 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
     for (int trial = 0; trial < 40; ++trial) {
         const bool isotropic = trial % 4 == 3, metric = trial % 2 == 1;
         Rows h(w), hu(w), hv(w), px(w), py(w), gn(w), nt(w), sx(w), sy(w);
-        Rows hf(w), hvf(w);  // rows 0 and 2: two rows south and north of the middle one
+        std::vector<RegimeFlags> regime(static_cast<std::size_t>(w));
         for (int k = 0; k < 3 * w; ++k) {
             const double kind = unit(rng);
             h.v[k] = kind < 0.15 ? 0.0 : kind < 0.22 ? 0.5 * h_min : 3.0 * unit(rng);
@@ -227,9 +227,7 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
             nt.v[k] = 0.5 + unit(rng);
             sx.v[k] = sym(rng);
             sy.v[k] = sym(rng);
-            const double far = unit(rng);
-            hf.v[k] = far < 0.15 ? 0.0 : far < 0.22 ? 0.5 * h_min : 3.0 * unit(rng);
-            hvf.v[k] = hf.v[k] * (far > 0.8 ? -1.0 : 10.0 * sym(rng));
+            if (k < w) regime[static_cast<std::size_t>(k)] = static_cast<RegimeFlags>(4.0 * unit(rng));
         }
         // Column i of the row is element i + ng.
         const auto col0 = [&](Rows& f, int row) { return f.v.data() + row * w + ng; };
@@ -242,57 +240,26 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
         const PressureRowInput in{col0(h, 1),
                                   col0(qu, 1),
                                   col0(qv, 1),
-                                  col0(h, 0),
-                                  col0(qv, 0),
-                                  col0(h, 2),
-                                  col0(qv, 2),
                                   col0(px, 1),
                                   col0(py, 1),
                                   col0(gn, 1),
                                   col0(nt, 1),
                                   metric ? col0(sx, 1) : nullptr,
                                   metric ? col0(sy, 1) : nullptr,
-                                  col0(hf, 0),
-                                  col0(hvf, 0),
-                                  col0(hf, 2),
-                                  col0(hvf, 2)};
+                                  regime.data() + ng};
         std::vector<double> out_v(9 * static_cast<std::size_t>(w), -7.0);
         const auto out_at = [&](int a) { return out_v.data() + a * w + ng; };
         const PressureRowOutput out{out_at(0), out_at(1), out_at(2), out_at(3), out_at(4),
                                     out_at(5), out_at(6), out_at(7), out_at(8)};
         const int lo = -ng, hi = w - ng - 1;
-        pressure_row(in, out, PressureRowParams{kc, k_max, h_min, isotropic}, lo, hi + 1, lo, hi);
-        // The reference: update_pressure_coefficients' loop body.
-        const auto vel = [h_min](double hh, double q) {
-            return hh >= h_min && hh > 0.0 ? q / hh : 0.0;
-        };
-        const auto extends = [](double a, double b) {
-            return b - a >= -1e-12 * std::max(std::abs(a), std::abs(b));
-        };
+        pressure_row(in, out, PressureRowParams{kc, k_max, h_min, isotropic}, lo, hi + 1);
+        // The reference: update_pressure_coefficients' loop body, with the regime given.
         for (int i = lo; i <= hi; ++i) {
             const int k = w + i + ng;
             double cx = px.v[k], cy = py.v[k];
             if (!isotropic) {
-                const int im = std::max(i - 1, lo) + w + ng, ip = std::min(i + 1, hi) + w + ng;
-                // Passive where the central difference compresses, confirmed by both
-                // one-sided differences or by the difference over four cells.
-                const auto is_active = [&](bool wide, double l, double c, double r) {
-                    const bool central = extends(l, r), one_sided = extends(l, c) || extends(c, r);
-                    return central || (one_sided && wide);
-                };
-                const int imm = std::max(i - 2, lo) + w + ng, ipp = std::min(i + 2, hi) + w + ng;
-                const bool x_active =
-                    is_active(extends(vel(h.v[imm], hu.v[imm]), vel(h.v[ipp], hu.v[ipp])),
-                              vel(h.v[im], hu.v[im]), vel(h.v[k], hu.v[k]), vel(h.v[ip], hu.v[ip]));
-                // Two rows away: v_ss <= v_nn multiplied out by both depths (a thin side
-                // at rest: momentum 0, depth 1).
-                const auto wet = [h_min](double hh) { return hh >= h_min && hh > 0.0; };
-                const double hs2 = hf.v[k - w], hn2 = hf.v[k + w];
-                const double q_ss = wet(hs2) ? hvf.v[k - w] : 0.0, d_ss = wet(hs2) ? hs2 : 1.0;
-                const double q_nn = wet(hn2) ? hvf.v[k + w] : 0.0, d_nn = wet(hn2) ? hn2 : 1.0;
-                const bool y_active =
-                    is_active(extends(q_ss * d_nn, q_nn * d_ss), vel(h.v[k - w], hv.v[k - w]),
-                              vel(h.v[k], hv.v[k]), vel(h.v[k + w], hv.v[k + w]));
+                const RegimeFlags r = regime[static_cast<std::size_t>(i + ng)];
+                const bool x_active = (r & kRegimeXActive) != 0, y_active = (r & kRegimeYActive) != 0;
                 (x_active ? active : passive)++;
                 cx = kc.kx(x_active) * px.v[k];
                 cy = kc.ky(x_active, y_active) * py.v[k];
@@ -327,24 +294,91 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
     EXPECT_GT(passive, 100);
 }
 
-TEST(UpdateRows, PressureRowRegimeIsTheCentralDifferenceConfirmedAtASecondScale) {
+TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
+    // Five rows (r - 2 .. r + 2) of random depths and momenta, random previous regimes;
+    // the reference is the rule of cell_rows.hpp (regime_row) written as a plain loop.
+    std::mt19937_64 rng(20261202);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
+    const int w = 43, ng = 2;  // columns -2 .. w - 3 with the padding clamp at both ends
+    const double h_min = 1e-3;
+    long passive = 0, active = 0, kept = 0, reset = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        std::vector<double> h(5 * static_cast<std::size_t>(w)), hu(h.size()), hv(h.size());
+        for (std::size_t k = 0; k < h.size(); ++k) {
+            const double kind = unit(rng);
+            h[k] = kind < 0.1 ? 0.0 : kind < 0.15 ? 0.5 * h_min : 3.0 * unit(rng);
+            // Some neighbours move alike (a vanishing difference extends).
+            hu[k] = h[k] * (kind > 0.85 ? 2.0 : 10.0 * sym(rng));
+            hv[k] = h[k] * (kind > 0.85 ? -1.0 : 10.0 * sym(rng));
+        }
+        std::vector<RegimeFlags> before(static_cast<std::size_t>(w));
+        for (auto& r : before) r = static_cast<RegimeFlags>(4.0 * unit(rng));
+        std::vector<RegimeFlags> regime = before;
+        const auto col0 = [&](std::vector<double>& f, int row) { return f.data() + row * w + ng; };
+        const RegimeRowInput in{col0(h, 2),  col0(hu, 2), col0(hv, 2), col0(h, 1),
+                                col0(hv, 1), col0(h, 3),  col0(hv, 3), col0(h, 0),
+                                col0(hv, 0), col0(h, 4),  col0(hv, 4)};
+        const int lo = -ng, hi = w - ng - 1;
+        regime_row(in, regime.data() + ng, h_min, lo, hi + 1, lo, hi);
+        // The reference: a velocity is (momentum, depth), at rest (0, 1) where thin or
+        // dry; b - a compared multiplied out by both depths.
+        const auto wet = [h_min](double d) { return d >= h_min && d > 0.0; };
+        const auto extends = [&](int ka, int kb, const std::vector<double>& q) {
+            const double qa = wet(h[ka]) ? q[ka] : 0.0, da = wet(h[ka]) ? h[ka] : 1.0;
+            const double qb = wet(h[kb]) ? q[kb] : 0.0, db = wet(h[kb]) ? h[kb] : 1.0;
+            const double x = qa * db, y = qb * da;
+            return y - x >= -1e-12 * std::max(std::abs(x), std::abs(y));
+        };
+        // Cells ll, l, c, r, rr (element indices) of one direction.
+        const auto next = [&](bool was, int ll, int l, int c, int r, int rr,
+                              const std::vector<double>& q) {
+            if (extends(l, r, q)) return true;
+            const bool confirmed =
+                (!extends(l, c, q) && !extends(c, r, q)) || !extends(ll, rr, q);
+            if (!confirmed) ++kept;
+            return !confirmed && was;
+        };
+        for (int i = lo; i <= hi; ++i) {
+            const int k = 2 * w + i + ng;
+            const auto col = [&](int j) { return 2 * w + std::clamp(j, lo, hi) + ng; };
+            const RegimeFlags was = before[static_cast<std::size_t>(i + ng)];
+            RegimeFlags ref = kRegimeAtStart;
+            if (wet(h[k])) {
+                const bool x = next((was & kRegimeXActive) != 0, col(i - 2), col(i - 1), k,
+                                    col(i + 1), col(i + 2), hu);
+                const bool y = next((was & kRegimeYActive) != 0, k - 2 * w, k - w, k, k + w,
+                                    k + 2 * w, hv);
+                ref = static_cast<RegimeFlags>((x ? kRegimeXActive : 0) | (y ? kRegimeYActive : 0));
+                (x ? active : passive)++;
+            } else {
+                ++reset;
+            }
+            ASSERT_EQ(int{ref}, int{regime[static_cast<std::size_t>(i + ng)]})
+                << "trial " << trial << " column " << i;
+        }
+    }
+    EXPECT_GT(active, 100);
+    EXPECT_GT(passive, 100);
+    EXPECT_GT(kept, 100);
+    EXPECT_GT(reset, 50);
+}
+
+TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
     // One row of wet cells, v = 0 (y active everywhere), u rising at 0.1 per cell (the flow
     // extends) except for one slow cell (a velocity minimum) and a stretch where u falls by
-    // 0.2 per cell (the flow compresses). Expected k_x per cell:
+    // 0.2 per cell (the flow compresses). Expected regime in x per cell:
     //  - the cell before the slow one: central difference u[i+1] - u[i-1] = -0.3, but
     //    neither confirmed (its one-sided differences are +0.1 and -0.4; over four cells
-    //    +0.4): active. A lone slow cell is what made patterns of passive cells grow;
+    //    +0.4): it keeps the regime it had. A lone slow cell is what made patterns of
+    //    passive cells grow when such a cell turned passive;
     //  - inside the falling stretch: central and both one-sided differences negative:
     //    passive;
     //  - at the stretch's two ends: central -0.1, one-sided differences of both signs,
-    //    over four cells -0.2: passive (a compression the one-sided test alone misses).
-    const int w = 30, ng = 2;
-    EarthPressureCoefficients kc;
-    kc.kx_active = 0.5;
-    kc.kx_passive = 3.0;
-    kc.ky_given_kx_active_active = kc.ky_given_kx_passive_active = 0.7;
-    kc.ky_given_kx_active_passive = kc.ky_given_kx_passive_passive = 2.0;
-    Rows h(w, 1.0), qu(w), qv(w), hv(w), px(w, 1.0), py(w, 1.0), gn(w, 9.81), nt(w, 1.0);
+    //    over four cells -0.2: passive (a compression the one-sided test alone misses);
+    //  - every other cell: central difference positive: active, whatever it was;
+    //  - a dry cell: back to both active.
+    const int w = 30, ng = 2, dry = 27;
+    std::vector<double> h(5 * static_cast<std::size_t>(w), 1.0), hu(h.size()), hv(h.size());
     const int slow = 8, fall0 = 16, fall1 = 22;  // u falls from cell fall0 to cell fall1
     std::vector<double> u(static_cast<std::size_t>(w));
     for (int c = 0; c < w; ++c) {
@@ -354,26 +388,30 @@ TEST(UpdateRows, PressureRowRegimeIsTheCentralDifferenceConfirmedAtASecondScale)
                                                       : bottom + 0.1 * (c - fall1);
     }
     u[slow] -= 0.5;
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < w; ++c)
-            qu.v[static_cast<std::size_t>(r * w + c)] = u[static_cast<std::size_t>(c)];
-    const auto col0 = [&](Rows& f, int row) { return f.v.data() + row * w + ng; };
-    const PressureRowInput in{col0(h, 1),  col0(qu, 1), col0(qv, 1), col0(h, 0),  col0(qv, 0),
-                              col0(h, 2),  col0(qv, 2), col0(px, 1), col0(py, 1), col0(gn, 1),
-                              col0(nt, 1), nullptr,     nullptr,     col0(h, 0),  col0(hv, 0),
-                              col0(h, 2),  col0(hv, 2)};
-    std::vector<double> out_v(9 * static_cast<std::size_t>(w), -7.0);
-    const auto out_at = [&](int a) { return out_v.data() + a * w + ng; };
-    const PressureRowOutput out{out_at(0), out_at(1), out_at(2), out_at(3), out_at(4),
-                                out_at(5), out_at(6), out_at(7), out_at(8)};
+    for (int r = 0; r < 5; ++r)
+        for (int c = 0; c < w; ++c) hu[static_cast<std::size_t>(r * w + c)] = u[static_cast<std::size_t>(c)];
+    h[static_cast<std::size_t>(2 * w + dry)] = 0.0;
+    hu[static_cast<std::size_t>(2 * w + dry)] = 0.0;
+    const auto col0 = [&](std::vector<double>& f, int row) { return f.data() + row * w + ng; };
+    const RegimeRowInput in{col0(h, 2),  col0(hu, 2), col0(hv, 2), col0(h, 1),
+                            col0(hv, 1), col0(h, 3),  col0(hv, 3), col0(h, 0),
+                            col0(hv, 0), col0(h, 4),  col0(hv, 4)};
     const int lo = -ng, hi = w - ng - 1;
-    pressure_row(in, out, PressureRowParams{kc, 3.0, 1e-3, false}, lo, hi + 1, lo, hi);
-    for (int c = 2; c + 2 < w; ++c) {  // the end columns see clamped differences
-        const bool passive = c >= fall0 && c <= fall1;
-        EXPECT_EQ(out_at(0)[c - ng], passive ? kc.kx_passive : kc.kx_active) << "cell " << c;
-        EXPECT_EQ(out_at(1)[c - ng],
-                  passive ? kc.ky_given_kx_passive_active : kc.ky_given_kx_active_active)
-            << "cell " << c;
+    for (const RegimeFlags was : {kRegimeAtStart, kRegimeYActive}) {  // x active, x passive
+        std::vector<RegimeFlags> regime(static_cast<std::size_t>(w), was);
+        regime_row(in, regime.data() + ng, 1e-3, lo, hi + 1, lo, hi);
+        for (int c = 2; c + 2 < w; ++c) {  // the end columns see clamped differences
+            const RegimeFlags got = regime[static_cast<std::size_t>(c)];
+            if (c == dry) {
+                EXPECT_EQ(got, kRegimeAtStart) << "dry cell";
+                continue;
+            }
+            if (c == dry - 1 || c == dry + 1) continue;  // their neighbour is at rest
+            const bool passive = (c >= fall0 && c <= fall1) ||
+                                 (c == slow - 1 && (was & kRegimeXActive) == 0);
+            EXPECT_EQ(got, passive ? kRegimeYActive : kRegimeAtStart)
+                << "cell " << c << ", was " << int{was};
+        }
     }
     // The cases that tell the rules apart: the central difference alone is negative before
     // the slow cell, the one-sided differences alone are mixed at the stretch's ends.

@@ -5,6 +5,7 @@
 // stepper's scalar loop body with its branches turned into selections, so the results
 // are bitwise those of the scalar code (tests/regression/test_cell_rows.cpp).
 // Pointers address element 0 of the row; cells i0 .. i1 - 1 are processed.
+#include <cstdint>
 #include <limits>
 
 #include "avalanche/physics/earth_pressure.hpp"
@@ -44,17 +45,41 @@ double cfl_rate_row(const double* h, const double* hu, const double* hv, const d
                     const double* py, double kx, double ky, double dx, double dy, double h_min,
                     int i0, int i1) noexcept;
 
+// The Savage-Hutter regime of a cell, carried from advection to advection (Stepper,
+// regime_row): bit kRegimeXActive set where k_x is active, bit kRegimeYActive where
+// k_y is. A cell starts, and a dry or thin cell restarts, with both active
+// (kRegimeAtStart). Four bytes, not one: with one-byte flags GCC 12 left the AVX-512F
+// clone of regime_row scalar (no 64-lane byte vectors without AVX-512BW).
+using RegimeFlags = std::int32_t;
+inline constexpr RegimeFlags kRegimeXActive = 1, kRegimeYActive = 2;
+inline constexpr RegimeFlags kRegimeAtStart = kRegimeXActive | kRegimeYActive;
+
+// Rows the regime stage reads: the state (depth and momenta) of row r, and the depth
+// and y-momentum of the rows one (s, n) and two (ss, nn) below and above it.
+struct RegimeRowInput {
+    const double *h, *hu, *hv;
+    const double *h_s, *hv_s, *h_n, *hv_n;
+    const double *h_ss, *hv_ss, *h_nn, *hv_nn;
+};
+
+// Updates the regime of cells i0 .. i1 - 1 of one row in place (cell_rows.cpp,
+// regime_lane): passive where the central velocity difference is negative and a second
+// scale confirms it (both one-sided differences negative, or the difference over four
+// cells); active where the central difference is not negative; otherwise (a central
+// compression that nothing confirms) the cell keeps the regime it had. Each cell reads
+// only its own previous regime, so rows may be updated in any order and by any thread.
+// The x-differences are clamped to the columns lo and hi. Pointers address column 0.
+void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, int i0, int i1,
+                int lo, int hi) noexcept;
+
 // Rows the pressure stage reads: the state's depth and velocity quotients of row r
 // (u = hu / h, v = hv / h of every cell, as state_velocity_row computes them), the
-// depth and v of the rows below (s) and above (n), the terrain's row r; sx, sy null
-// in bed-fitted frames.
+// terrain's row r (sx, sy null in bed-fitted frames) and the row's regime
+// (regime_row), required unless the pressure is isotropic.
 struct PressureRowInput {
     const double *h, *u, *v;
-    const double *h_s, *v_s, *h_n, *v_n;
     const double *px, *py, *gn, *nt, *sx, *sy;
-    // Two rows south and north (depth and y-momentum of the state), for the regime's
-    // wide difference (pressure_row); required unless the pressure is isotropic.
-    const double *h_ss = nullptr, *hv_ss = nullptr, *h_nn = nullptr, *hv_nn = nullptr;
+    const RegimeFlags* regime = nullptr;
 };
 
 // The invariant bounds of a dry or thin cell, which bounds nothing: u_lo = v_lo =
@@ -78,14 +103,11 @@ struct PressureRowParams {
 };
 
 // The advection's per-cell stage on cells i0 .. i1 - 1 of one row (advection.cpp,
-// Stepper::pressure_row: active where the flow extends, passive where it compresses:
-// where the central velocity difference is negative and so is either both one-sided
-// difference or the difference over four cells (cell_rows.cpp, pressure_lane);
+// Stepper::pressure_row: the pressure coefficients of the cell's regime (regime_row);
 // Riemann-invariant bounds u -/+ 2a, v -/+ 2a and the along-surface speed bound of wet
-// cells). The x-differences are clamped to the columns lo and hi. Output pointers
-// address column 0 like the inputs.
+// cells). Output pointers address column 0 like the inputs.
 void pressure_row(const PressureRowInput& in, const PressureRowOutput& out,
-                  const PressureRowParams& p, int i0, int i1, int lo, int hi) noexcept;
+                  const PressureRowParams& p, int i0, int i1) noexcept;
 
 // The velocity quotients u = hu / h and v = hv / h of cells i0 .. i1 - 1 of a row,
 // for every cell (a dry cell's are inf or NaN; the kernels mask them): computed once

@@ -19,6 +19,7 @@
 #include "avalanche/core/grid.hpp"
 #include "avalanche/core/state.hpp"
 #include "avalanche/numerics/active_box.hpp"
+#include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/parameters.hpp"
 #include "avalanche/physics/earth_pressure.hpp"
 #include "avalanche/physics/material.hpp"
@@ -54,6 +55,13 @@ class Stepper {
         energy_budget_ = b;
         budget_set_ = true;
     }
+    // The Savage-Hutter regime of every cell (cell_rows.hpp, kRegimeXActive and
+    // kRegimeYActive; the state's layout, ghost cells included): carried from advection
+    // to advection, because a cell whose compression nothing confirms keeps its regime.
+    // Empty until the first advection (every cell kRegimeAtStart). A restart from a
+    // checkpoint must restore it to reproduce the uninterrupted run bitwise.
+    [[nodiscard]] const std::vector<RegimeFlags>& regime() const { return regime_; }
+    void set_regime(std::vector<RegimeFlags> r) { regime_ = std::move(r); }
     // The budget of a state: max over wet cells of
     //   |u|^2/2 + g (z_b + h_n g/g_n) + 2 k_max g_n h_n.
     [[nodiscard]] double energy_budget_of(const State& s) const;
@@ -125,6 +133,8 @@ class Stepper {
 
     void fill_ghosts_near(State& s, const ActiveBox& near) const;
     void pressure_row(const State& s, int r, int ia, int ib, StripBuffers& w) const;
+    // The regime of the cells [ia, ib) x [ja, jb) from the state s (regime_row).
+    void update_regime(const State& s, int ia, int ib, int ja, int jb);
     // Advects rows [j_begin, j_end) of s; the updated rows go into s itself, or into
     // w.waiting[wait_slot] when wait_slot is 0 or 1.
     void advect_strip(State& s, double tau, int j_begin, int j_end, StripBuffers& w,
@@ -160,6 +170,7 @@ class Stepper {
     std::array<std::vector<double>, 4>
         edge_outflow_;  // per face of the west, east, south, north edges
     std::uint64_t cell_updates_ = 0;
+    std::vector<RegimeFlags> regime_;  // see regime()
 };
 
 }  // namespace avalanche

@@ -5,7 +5,8 @@
 //   k_y(act/pass) = 1/2 (1 + k_x -/+ sqrt((1 - k_x)^2 + 4 tan^2 delta))
 // Active where the flow extends (du/dx > 0), passive where it compresses; k_y is
 // evaluated with the k_x chosen in the same cell. On the grid: passive where the central
-// difference is negative, confirmed at a second scale (numerics/cell_rows.cpp, pressure_lane).
+// difference is negative, confirmed at a second scale; active where it is not negative;
+// otherwise the cell keeps its regime (numerics/cell_rows.cpp, regime_lane).
 #include "avalanche/physics/material.hpp"
 
 namespace avalanche {
