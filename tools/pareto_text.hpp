@@ -40,9 +40,9 @@ the chute with a 0.5 m base cell: `draft` doubles the cell size and the Courant 
 and advects once per step (SLS), `standard` is the default (the paper's scheme and
 Courant number 0.2, L S L), `fine` halves the cell size at Courant 0.4 with SLS. On the
 chute, draft costs well under a tenth of standard (0.06-0.07 in the last two runs of the
-study: the CPU times of these short runs are noisy) for 1.14x its deposit error (runout
-within a cell of 1 m); fine costs 1.5-2x for 0.6x the deposit error and a fifth of its
-runout error.
+study: the CPU times of these short runs are noisy) for 1.2x its deposit error (runout
+within a cell of 1 m); fine costs 1.5-2x for 0.6x the deposit error and a twentieth of
+its runout error.
 
 Why SLS at Courant 0.4: L S L advects twice per step, each time over half the step, so
 at Courant C every advection runs at Courant C/2; SLS at Courant 0.2 repeats L S L at
@@ -59,13 +59,15 @@ passed no flux in the WAF faces, kept their mass and were accelerated step after
 to 20 m/s, which set the time step (fixed in the transverse predictor, docs/numerics.md
 step 3; L S L runs had them too, e.g. the bumpy chute of docs/verification.md section
 4 took 1091 steps instead of 759). SLS's deposit error keeps falling with the cell size
-(0.164, 0.128, 0.088 from 1 m to 0.25 m) where the L S L runs level off near 0.13-0.15
-from 0.5 m on, although the reference is itself an L S L run. That difference is not
-understood yet. The reference itself still moves with the cell size: since the
-Savage-Hutter regime rule changed (docs/verification.md, finding 2) the chute's deposit
-gets slightly steeper and shorter on finer cells (runout 51.25, 51.12, 50.81 and 50.47 m
-at 0.5, 0.25, 0.125 and 0.0625 m), so the errors here include that drift and are about
-twice those measured before the change; the chute's
+(0.142, 0.107, 0.069 from 1 m to 0.25 m) where the L S L runs level off (0.142, 0.116,
+0.107 at Courant 0.2), although the reference is itself an L S L run. That difference is
+not understood yet. The reference itself still moves with the cell size (runout
+51.25, 51.12, 50.94 and 50.59 m at 0.5, 0.25, 0.125 and 0.0625 m). Since
+2026-12-02 a cell whose compression nothing confirms keeps its Savage-Hutter regime
+(docs/verification.md, finding 2): the chute's errors here fell by about a fifth with
+it (standard 0.143 -> 0.116, draft 0.164 -> 0.142, fine 0.088 -> 0.069); they are still
+nearly twice those of the first regime rule (the central difference alone, standard
+0.063), which let patterns of passive cells grow in spreading flows. The chute's
 deposit error also moves by several per cent with round-off (docs/numerics.md,
 "Symmetry and determinism"), so differences of that size between rows are noise. The
 chute's deposit converges slowly in general (the stopping fronts and the shock where the
