@@ -49,7 +49,8 @@ AVALANCHE_INLINE void sources_row(double* __restrict h, double* __restrict hu,
     for (int i = i0; i < i1; ++i) {
         const double hh = h[i];
         const bool wet = hh > 0.0;
-        double u = hu[i] / hh, v = hv[i] / hh;  // discarded on dry cells
+        const double inv = 1.0 / hh;  // one division for both quotients
+        double u = hu[i] * inv, v = hv[i] * inv;  // discarded on dry cells
         double after2 = 0.0;                    // true speed^2 after the last sub-step
         if constexpr (OneSubstep) {
             after2 = gravity_friction<Curvature, Metric>(u, v, t, i, sub, td);
@@ -87,7 +88,8 @@ AVALANCHE_SIMD_CLONES double cfl_rate_clone(const double* __restrict h, const do
 #pragma omp simd reduction(max : fastest_x, fastest_y)
     for (int i = i0; i < i1; ++i) {
         const double hh = h[i];
-        const double u = hu[i] / hh, v = hv[i] / hh;
+        const double inv = 1.0 / hh;
+        const double u = hu[i] * inv, v = hv[i] * inv;
         const double sx = std::abs(u) + std::sqrt(kx * px[i] * hh);
         const double sy = std::abs(v) + std::sqrt(ky * py[i] * hh);
         // max is exact, so the order of the lanes does not change the result.
@@ -292,8 +294,9 @@ AVALANCHE_SIMD_CLONES void state_velocity_clone(const double* __restrict h,
                                                 double* __restrict v, int i0, int i1) {
 #pragma omp simd
     for (int i = i0; i < i1; ++i) {
-        u[i] = hu[i] / h[i];
-        v[i] = hv[i] / h[i];
+        const double inv = 1.0 / h[i];  // one division for both quotients
+        u[i] = hu[i] * inv;
+        v[i] = hv[i] * inv;
     }
 }
 }  // namespace

@@ -324,7 +324,8 @@ AVALANCHE_SIMD_CLONES void predictor_row_any(const FaceRowInput& q, const FaceRo
         // are divided from the unselected values: GCC turns a quotient of selected values
         // into masked divisions, which took twice the time (bench_row_kernels).
         const bool kept = (h[i] >= h_dry) & (hh < h_dry);
-        const double un_p = hn / hh, ut_p = ht / hh;
+        const double inv = 1.0 / hh;
+        const double un_p = hn * inv, ut_p = ht * inv;
         ph[i] = kept ? h[i] : (empty ? 0.0 : hh);
         pqn[i] = kept ? qn[i] : (empty ? 0.0 : hn);
         pqt[i] = kept ? qt[i] : (empty ? 0.0 : ht);

@@ -79,7 +79,8 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
             m = std::max({m, b[r - 1], b[r], b[r + 1]});
         return m;
     };
-    double u = qu / hn, v = qv / hn;
+    const double inv = 1.0 / hn;  // as update_row's marking pass
+    double u = qu * inv, v = qv * inv;
     if (!(in.u_lo[i] <= u && u <= in.u_hi[i] && in.v_lo[i] <= v && v <= in.v_hi[i])) {
         const double ulo = min9(in.u_lo), uhi = max9(in.u_hi, -kNoVelocityBound);
         if (ulo > uhi) {  // no wet cell around: nothing can have moved it
@@ -165,7 +166,8 @@ AVALANCHE_SIMD_CLONES double update_clone(const UpdateRowInput& in, const Update
     for (int i = i0; i < i1; ++i) {
         const double hn = h_new[i];
         const bool empty = hn <= 0.0;
-        const double u = hu_new[i] / hn, v = hv_new[i] / hn;  // discarded when empty
+        const double inv = 1.0 / hn;
+        const double u = hu_new[i] * inv, v = hv_new[i] * inv;  // discarded when empty
         // Within the cell's own bounds (a NaN velocity is not): written as a product of
         // selections, as a chain of && or & is not vectorised by GCC 12.
         const double own = (ulo[i] <= u ? 1.0 : 0.0) * (u <= uhi[i] ? 1.0 : 0.0) *

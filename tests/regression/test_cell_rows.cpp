@@ -3,7 +3,9 @@
 // those loops as they stood (stepper.cpp, apply_sources and stable_dt, 2026-11-22),
 // kept here as the definition (they call the scalar cap_speed of energy_cap.hpp, which
 // they called then). Rows mix dry, thin, moving, stopping and capped cells,
-// with and without curvature and metric terms, one and several sub-steps.
+// with and without curvature and metric terms, one and several sub-steps. One change on
+// purpose since (2026-12-02): a cell's two velocity quotients share one reciprocal,
+// hu * (1 / h) and hv * (1 / h), in the kernels and in these references alike.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -72,7 +74,8 @@ TEST(CellRows, SourcesRowIsBitwiseTheScalarSourceLoop) {
         const double sub = dt / m;
         for (int i = 0; i < n; ++i) {
             if (ref.h[i] <= 0.0) continue;
-            double u = ref.hu[i] / ref.h[i], v = ref.hv[i] / ref.h[i];
+            const double inv = 1.0 / ref.h[i];  // one division for both quotients
+            double u = ref.hu[i] * inv, v = ref.hv[i] * inv;
             double after2 = 0.0;
             for (int k = 0; k < m; ++k) {
                 u += sub * ref.ax[i];
@@ -138,7 +141,8 @@ TEST(CellRows, CflRateRowIsTheScalarMaximum) {
         double ref = 0.0;
         for (int i = 0; i < n; ++i) {
             if (r.h[i] < h_min || r.h[i] <= 0.0) continue;
-            const double u = r.hu[i] / r.h[i], v = r.hv[i] / r.h[i];
+            const double inv = 1.0 / r.h[i];
+            const double u = r.hu[i] * inv, v = r.hv[i] * inv;
             const double rx = (std::abs(u) + std::sqrt(kx * r.px[i] * r.h[i])) / dx;
             const double ry = (std::abs(v) + std::sqrt(ky * r.py[i] * r.h[i])) / dy;
             ref = std::max(ref, std::max(rx, ry));

@@ -6,7 +6,9 @@
 // the scalar cap_speed of energy_cap.hpp, which they called then). Rows
 // mix empty, emptied, thin and wet cells, velocities inside and outside their own
 // invariant bounds, cells with no wet neighbour, speeds over the own and the 3 x 3
-// speed bound, and cells over the energy cap.
+// speed bound, and cells over the energy cap. One change on purpose since (2026-12-02):
+// a cell's two velocity quotients share one reciprocal, hu * (1 / h) and hv * (1 / h),
+// in the kernels and in these references alike.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -151,7 +153,8 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
                     ++emptied;
                     return;
                 }
-                double u = qu / hn, v = qv / hn;
+                const double inv = 1.0 / hn;  // one division for both quotients
+                double u = qu * inv, v = qv * inv;
                 if (!(ulo.v[k] <= u && u <= uhi.v[k] && vlo.v[k] <= v && v <= vhi.v[k])) {
                     ++clamped;
                     const double lo = min9(ulo, k), hi = max9(uhi, k, -kNoBound);
@@ -234,8 +237,8 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
         // The velocity quotients hu / h, hv / h of every cell, as the stepper passes them.
         Rows qu(w), qv(w);
         for (int k = 0; k < 3 * w; ++k) {
-            qu.v[k] = hu.v[k] / h.v[k];
-            qv.v[k] = hv.v[k] / h.v[k];
+            qu.v[k] = hu.v[k] * (1.0 / h.v[k]);
+            qv.v[k] = hv.v[k] * (1.0 / h.v[k]);
         }
         const PressureRowInput in{col0(h, 1),
                                   col0(qu, 1),
@@ -269,7 +272,7 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
             double ref[9] = {cx, cy, kNoBound, -kNoBound, kNoBound, -kNoBound, 0.0, 0.0, 0.0};
             const double hh = h.v[k];
             if (hh >= h_min && hh > 0.0) {
-                const double u = hu.v[k] / hh, v = hv.v[k] / hh;
+                const double u = hu.v[k] * (1.0 / hh), v = hv.v[k] * (1.0 / hh);
                 const double ax = 2.0 * std::sqrt(cx * hh), ay = 2.0 * std::sqrt(cy * hh);
                 ref[2] = u - ax;
                 ref[3] = u + ax;
