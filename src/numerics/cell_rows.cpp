@@ -49,9 +49,9 @@ AVALANCHE_INLINE void sources_row(double* __restrict h, double* __restrict hu,
     for (int i = i0; i < i1; ++i) {
         const double hh = h[i];
         const bool wet = hh > 0.0;
-        const double inv = 1.0 / hh;  // one division for both quotients
+        const double inv = 1.0 / hh;              // one division for both quotients
         double u = hu[i] * inv, v = hv[i] * inv;  // discarded on dry cells
-        double after2 = 0.0;                    // true speed^2 after the last sub-step
+        double after2 = 0.0;                      // true speed^2 after the last sub-step
         if constexpr (OneSubstep) {
             after2 = gravity_friction<Curvature, Metric>(u, v, t, i, sub, td);
         } else {
@@ -130,11 +130,14 @@ namespace {
 // (momentum, depth) pair, a thin or dry cell at rest (momentum 0 over depth 1), and
 // differences of velocities are compared multiplied out by both (positive) depths, so
 // that no division is needed.
-AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime, double hmin,
-                                  int i, int im, int ip, int imm, int ipp) {
+AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime, double hmin, int i,
+                                  int im, int ip, int imm, int ipp) {
     // Whether the velocity does not fall from a to b: b - a >= 0 up to a relative
     // 1e-12, so that round-off cannot make a vanishing difference (at rest, or a
-    // uniformly moving block) compress.
+    // uniformly moving block) compress. A vanishing difference extends: taken for
+    // compressing, it made a mass released from rest start passive everywhere and grow a
+    // period-4 pattern of regimes, with errors that rose under refinement
+    // (docs/verification.md, finding 2).
     const auto extends = [](double qa, double da, double qb, double db) {
         const double lo = qa * db, hi = qb * da;  // a and b times both depths
         return hi - lo >= -1e-12 * std::max(std::abs(lo), std::abs(hi)) ? 1.0 : 0.0;
@@ -182,8 +185,9 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
 // Without tree-PRE: GCC 12 otherwise carries loads of one cell's neighbours over to the
 // next cell, a loop-carried value its vectoriser rejects ("unknown def-use cycle"), and
 // the loop stayed scalar: 10.6-29 ns per cell against 3.5 (bench_row_kernels).
-__attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void regime_row_clone(const RegimeRowInput& input, RegimeFlags* regime,
-                                            double h_min, int i0, int i1, int lo, int hi) {
+__attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void regime_row_clone(
+    const RegimeRowInput& input, RegimeFlags* regime, double h_min, int i0, int i1, int lo,
+    int hi) {
     // A local copy, so that GCC need not prove that the stores through regime leave the
     // caller's row pointers alone.
     const RegimeRowInput in = input;
@@ -202,8 +206,8 @@ __attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void regime_row_c
 
 }  // namespace
 
-void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, int i0, int i1,
-                int lo, int hi) noexcept {
+void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, int i0, int i1, int lo,
+                int hi) noexcept {
     regime_row_clone(in, regime, h_min, i0, i1, lo, hi);
 }
 
