@@ -113,6 +113,12 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
     avalanche::pressure_row(in, out, p, ia, ib);
 }
 
+ActiveBox Stepper::per_cell_box(const ActiveBox& b) const {
+    const int ng = kGhostLayers;
+    return {std::max(b.i0 - ng, -ng), std::min(b.i1 + ng, grid_.nx + ng), std::max(b.j0 - ng, -ng),
+            std::min(b.j1 + ng, grid_.ny + ng)};
+}
+
 void Stepper::update_regime(const State& s, int ia, int ib, int ja, int jb) {
     const int ng = kGhostLayers;
     if (regime_.size() != s.h.raw().size()) regime_.assign(s.h.raw().size(), kRegimeAtStart);
@@ -139,7 +145,8 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
     const double hd = h_min_;
     const std::ptrdiff_t st = s.h.stride();
     // Columns of the per-cell stage and the y-predictor: every column a stage uses.
-    const int pc0 = std::max(b.i0 - ng, -ng), pc1 = std::min(b.i1 + ng, nx + ng);
+    const ActiveBox per_cell = per_cell_box(b);
+    const int pc0 = per_cell.i0, pc1 = per_cell.i1;
     w.ng = ng;
     // The thread's previous strip ended at J: the stage rows this strip reads and that
     // one computed are moved to their places in the buffers (carry_rows), and only the
@@ -154,7 +161,7 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
 
     // Row ranges [lo, hi) of the stages: the whole-box ranges of the operator, cut to
     // what the update of rows [J, Je) reads.
-    const int pr0 = std::max(b.j0 - ng, -ng), pr1 = std::min(b.j1 + ng, ny + ng);  // per-cell stage
+    const int pr0 = per_cell.j0, pr1 = per_cell.j1;  // per-cell stage
     const int x0 = std::max(J - 1, b.j0), x1 = std::min(Je + 1, b.j1);  // x-faces (and y-predictor)
     const int y0 = std::max(J - 1, b.j0), y1 = std::min(Je + 2, b.j1 + 1);  // y-faces
     const int xp0 = std::max(y0 - 2, pr0), xp1 = std::min(y1 + 1, pr1);     // x-predictor
@@ -424,18 +431,17 @@ void Stepper::advect(State& s, double tau) {
         if (w.rows == 0) w.allocate(s.h.stride(), kStripRows + 8);
         w.carried_for = std::numeric_limits<int>::min();  // a new state: nothing carries over
     }
+    // The regime of every cell the pressure stage computes, from the state before any
+    // strip writes into it.
+    if (material_.earth_pressure != EarthPressureModel::isotropic) {
+        const ActiveBox per_cell = per_cell_box(b);
+        update_regime(s, per_cell.i0, per_cell.i1, per_cell.j0, per_cell.j1);
+    }
     // Each thread takes a block of consecutive strips. Its first and last strips share
     // rows with the neighbouring blocks, whose strips read the old state there: their
     // updated rows wait in the thread's buffers until every block is done. The other
     // strips write theirs into s at once (advect_strip, step 7), so no second state
     // is kept.
-    // The regime of every cell the pressure stage computes (advect_strip, pr0 .. pr1
-    // and pc0 .. pc1), from the state before any strip writes into it.
-    if (material_.earth_pressure != EarthPressureModel::isotropic) {
-        const int ng = kGhostLayers;
-        update_regime(s, std::max(b.i0 - ng, -ng), std::min(b.i1 + ng, grid_.nx + ng),
-                      std::max(b.j0 - ng, -ng), std::min(b.j1 + ng, grid_.ny + ng));
-    }
     const int strips = (b.j1 - b.j0 + kStripRows - 1) / kStripRows;
     const auto block_of = [strips](int t, int n) {  // strips [first, last) of thread t of n
         return std::pair<int, int>{strips * t / n, strips * (t + 1) / n};

@@ -133,6 +133,9 @@ class Stepper {
 
     void fill_ghosts_near(State& s, const ActiveBox& near) const;
     void pressure_row(const State& s, int r, int ia, int ib, StripBuffers& w) const;
+    // The cells of the per-cell stage (regimes, velocity quotients, pressure) for the
+    // active box b: b widened by the ghost layers, into the padding.
+    [[nodiscard]] ActiveBox per_cell_box(const ActiveBox& b) const;
     // The regime of the cells [ia, ib) x [ja, jb) from the state s (regime_row).
     void update_regime(const State& s, int ia, int ib, int ja, int jb);
     // Advects rows [j_begin, j_end) of s; the updated rows go into s itself, or into
