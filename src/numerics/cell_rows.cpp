@@ -153,9 +153,8 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
     // (Taking it for active there, as the rule did until 2026-12-02, let a decelerating
     // deposit, whose small velocities make such cells common, spread less and less as
     // the cells got smaller; taking it for passive grew the patterns again.)
-    const auto is_wet = [hmin](double hh) { return (hh >= hmin) & (hh > 0.0); };
-    const auto q_of = [&](double hh, double q) { return is_wet(hh) ? q : 0.0; };
-    const auto d_of = [&](double hh) { return is_wet(hh) ? hh : 1.0; };
+    const auto q_of = [hmin](double hh, double q) { return is_wet(hh, hmin) ? q : 0.0; };
+    const auto d_of = [hmin](double hh) { return is_wet(hh, hmin) ? hh : 1.0; };
     // The new regime (1 active, 0 passive, as doubles like everything else in the loop)
     // from the previous one and the cells ll, l, c, r, rr of a direction: depths h and
     // momenta q.
@@ -179,7 +178,7 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
     const double y_active = next(was_y, in.h_ss[i], in.hv_ss[i], in.h_s[i], in.hv_s[i], hh,
                                  in.hv[i], in.h_n[i], in.hv_n[i], in.h_nn[i], in.hv_nn[i]);
     const double now = kRegimeXActive * x_active + kRegimeYActive * y_active;
-    regime[i] = static_cast<RegimeFlags>(is_wet(hh) ? now : double{kRegimeAtStart});
+    regime[i] = static_cast<RegimeFlags>(is_wet(hh, hmin) ? now : double{kRegimeAtStart});
 }
 
 // Without tree-PRE: GCC 12 otherwise carries loads of one cell's neighbours over to the
@@ -243,7 +242,7 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
     // produce (the invariant domain of the system); the along-surface speed plus the
     // along-surface dry-front celerity 2 sqrt(k g_n h_n) is frame-independent
     // (docs/numerics.md, step 8). Dry and thin cells bound nothing.
-    const bool wet = (hh >= hmin) & (hh > 0.0);
+    const bool wet = is_wet(hh, hmin);
     const double u = in.u[i], v = in.v[i];  // hu / hh, hv / hh
     // The celerities the first-order faces take (face_flux_rows.hpp), also the bounds' a.
     const double cel_x = side_celerity(hh, cx, hmin), cel_y = side_celerity(hh, cy, hmin);

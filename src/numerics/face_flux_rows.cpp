@@ -26,8 +26,8 @@ AVALANCHE_INLINE FaceFlux hllc_lane(double h_l, double ul_any, double vl_any, do
                                     double al, double ar, double h_dry) {
     // Non-short-circuit logic and divisions evaluated for every lane: conditional
     // arithmetic would keep the loop scalar.
-    const bool wet_l = (h_l >= h_dry) & (h_l > 0.0);
-    const bool wet_r = (h_r >= h_dry) & (h_r > 0.0);
+    const bool wet_l = is_wet(h_l, h_dry);
+    const bool wet_r = is_wet(h_r, h_dry);
     const double hl = wet_l ? h_l : 0.0, hr = wet_r ? h_r : 0.0;
     const double ul = wet_l ? ul_any : 0.0, vl = wet_l ? vl_any : 0.0;
     const double ur = wet_r ? ur_any : 0.0, vr = wet_r ? vr_any : 0.0;
@@ -148,7 +148,7 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, doubl
     const bool from_left_2 = s_star >= 0.0;
     // The upwind cell's transverse velocity (of LL or RR).
     const double h_up = from_left_2 ? h_ll : h_rr, v_up_any = from_left_2 ? v_ll : v_rr;
-    const double v_up = (h_up >= h_dry) & (h_up > 0.0) ? v_up_any : 0.0;
+    const double v_up = is_wet(h_up, h_dry) ? v_up_any : 0.0;
     const double dv_loc = vr - vl;
     const double dv_up = from_left_2 ? vl - v_up : v_up - vr;
     const double tiny_v = kFlat * std::max(std::abs(vl), std::abs(vr));

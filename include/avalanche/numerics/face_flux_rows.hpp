@@ -52,11 +52,17 @@ struct FaceRowOutput {
     double* ut = nullptr;
 };
 
+// Whether a cell of depth h takes part in the fluxes and the pressure stage: at least
+// h_dry (h_min) thick and not empty. Non-short-circuit, so that the row kernels using it
+// stay vectorised.
+[[nodiscard]] inline bool is_wet(double h, double h_dry) noexcept {
+    return (h >= h_dry) & (h > 0.0);
+}
+
 // The celerity a = sqrt(c h) of a cell as hllc_flux takes it for a face side: a side
 // thinner than h_dry (or empty) counts as dry, a = 0. Inline for the row kernels.
 [[nodiscard]] inline double side_celerity(double h, double c, double h_dry) noexcept {
-    const bool wet = (h >= h_dry) & (h > 0.0);
-    return std::sqrt(c * (wet ? h : 0.0));
+    return std::sqrt(c * (is_wet(h, h_dry) ? h : 0.0));
 }
 
 // side_celerity of n cells: the values hllc_flux and waf_face_flux take per side.
