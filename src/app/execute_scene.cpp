@@ -190,6 +190,13 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
         "ended ({}) at t = {:.6g} s after {} steps in {:.3g} s wall; {:.3g} cell updates/s",
         to_string(stats.end_reason), stats.simulated_time, stats.steps, stats.wall_seconds,
         stats.cell_updates_per_second());
+    // A run that ended by time may have been about to stop, or far from it: the ratio
+    // the stop rule compares (docs/numerics.md, "End of a run").
+    spdlog::info(
+        "kinetic energy at the end: {:.2g} of its maximum "
+        "(the stop rule: below {:.2g} for {:.3g} s)",
+        stats.final_kinetic_energy_fraction(), s.numerics.stop_ke_fraction,
+        s.numerics.stop_duration);
     spdlog::info(
         "volume: released {:.6g} m3, final {:.6g} m3, outflow {:.6g} m3, relative error {:.3g}",
         stats.released_volume, stats.final_volume, stats.outflow_volume,

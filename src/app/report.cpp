@@ -49,7 +49,8 @@ void write_report(const std::string& dir, const ProductInputs& in, const std::ve
     m << "| deposited volume (thicker than " << out.h_threshold << " m) | " << fixed(r.deposit_volume_m3, 1)
       << " m3 |\n";
     m << "| duration simulated, end of run | " << fixed(st.simulated_time, 1) << " s, " << to_string(st.end_reason)
-      << " |\n";
+      << " (kinetic energy at the end " << std::scientific << std::setprecision(1)
+      << st.final_kinetic_energy_fraction() << std::defaultfloat << " of its maximum) |\n";
     m << "| mass balance: released = final + outflow | " << fixed(st.released_volume, 3) << " = "
       << fixed(st.final_volume, 3) << " + " << fixed(st.outflow_volume, 3) << " m3 (relative error "
       << std::scientific << std::setprecision(1) << st.relative_mass_error() << std::defaultfloat << ") |\n";

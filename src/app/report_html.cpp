@@ -108,6 +108,8 @@ std::string brief_section(const nlohmann::json& summary) {
       << row("maximum impact pressure", "runout.max_pressure_kpa", "kPa")
       << row("released volume", "volume.released_m3", "m³")
       << row("simulated time", "simulated_time_s", "s") << row("end of the run", "end_reason", "")
+      << row("kinetic energy at the end, as a fraction of its maximum",
+             "final_kinetic_energy_fraction", "")
       << "</table></section>\n";
     return s.str();
 }

@@ -44,6 +44,10 @@ double RunStatistics::relative_mass_error() const {
     return (final_volume + outflow_volume - released_volume) / released_volume;
 }
 
+double RunStatistics::final_kinetic_energy_fraction() const {
+    return max_kinetic_energy > 0.0 ? final_kinetic_energy / max_kinetic_energy : 0.0;
+}
+
 double RunStatistics::cell_updates_per_second() const {
     return wall_seconds > 0.0 ? static_cast<double>(cell_updates) / wall_seconds : 0.0;
 }
@@ -361,6 +365,9 @@ RunStatistics Simulation::run() {
     st.final_volume = total_volume(state_, grid_);
     st.outflow_volume = stepper_.outflow_volume();
     st.max_kinetic_energy = L.ke_max;
+    // Scanned again rather than kept from the loop: a run that took no step (resumed at
+    // its end, interrupted at once) has no scan of its own.
+    st.final_kinetic_energy = scan_state(state_, grid_, stepper_.active_box(), t).kinetic_energy;
     return st;
 }
 

@@ -29,6 +29,8 @@ nlohmann::json make_summary(const SummaryInputs& in) {
                    {"outflow_m3", st.outflow_volume},
                    {"relative_error", st.relative_mass_error()}};
     s["max_kinetic_energy_m5_per_s2"] = st.max_kinetic_energy;
+    s["final_kinetic_energy_m5_per_s2"] = st.final_kinetic_energy;
+    s["final_kinetic_energy_fraction"] = st.final_kinetic_energy_fraction();
     s["outputs"] = {{"results", in.results_file}, {"snapshots", in.snapshots}};
     s["parameters"] = in.config;
     return s;

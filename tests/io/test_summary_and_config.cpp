@@ -46,6 +46,8 @@ TEST(Summary, HasEveryDocumentedKeyFromTheRunStatistics) {
     in.stats.released_volume = 10.0;
     in.stats.final_volume = 9.0;
     in.stats.outflow_volume = 1.0;
+    in.stats.max_kinetic_energy = 8.0;
+    in.stats.final_kinetic_energy = 2e-3;
     in.config = effective_config(Scenario{});
     in.config_hash = config_hash(in.config);
     in.command_line = "avalanche-hazard run --scenario s.toml --out o";
@@ -62,6 +64,9 @@ TEST(Summary, HasEveryDocumentedKeyFromTheRunStatistics) {
     EXPECT_EQ(j["volume"]["final_m3"], 9.0);
     EXPECT_EQ(j["volume"]["outflow_m3"], 1.0);
     EXPECT_EQ(j["volume"]["relative_error"], 0.0);
+    EXPECT_EQ(j["max_kinetic_energy_m5_per_s2"], 8.0);
+    EXPECT_EQ(j["final_kinetic_energy_m5_per_s2"], 2e-3);
+    EXPECT_EQ(j["final_kinetic_energy_fraction"], 2e-3 / 8.0);
     EXPECT_EQ(j["parameters"], in.config);
     EXPECT_EQ(j["config_hash"], in.config_hash);
     EXPECT_EQ(j["software_version"], software_version());

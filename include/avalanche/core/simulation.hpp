@@ -36,7 +36,13 @@ struct RunStatistics {
     double final_volume = 0.0;     // m^3 in the domain at the end
     double outflow_volume = 0.0;   // m^3 through open edges
     double max_kinetic_energy = 0.0;  // J/kg x m^3 (sum of h |u|^2 / 2 dA)
+    // The same sum for the state the run ends with: with final_kinetic_energy_fraction()
+    // it says how near to the stop rule a run that ended by time was (docs/numerics.md,
+    // "End of a run").
+    double final_kinetic_energy = 0.0;
     [[nodiscard]] double relative_mass_error() const;
+    // final_kinetic_energy / max_kinetic_energy; 0 when nothing ever moved.
+    [[nodiscard]] double final_kinetic_energy_fraction() const;
     [[nodiscard]] double cell_updates_per_second() const;
 };
 
