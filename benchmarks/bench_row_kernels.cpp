@@ -155,7 +155,7 @@ void bm_regime_row(benchmark::State& state) {
                             w.h.at(1),  w.hv.at(1),  w.h.at(-1),  w.hv.at(-1), w.h.at(1),
                             w.hv.at(1)};  // rows -/+ 2 stand in as -/+ 1
     run_per_item(state, kRow, [&] {
-        regime_row(in, regime.data() + kPad, 1e-3, 0, kRow, -kPad, kRow + kPad - 1);
+        regime_row(in, regime.data() + kPad, 1e-3, 0.05, 0, kRow, -kPad, kRow + kPad - 1);
     });
     state.SetLabel("per cell");
 }

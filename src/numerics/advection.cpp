@@ -119,8 +119,12 @@ ActiveBox Stepper::per_cell_box(const ActiveBox& b) const {
             std::min(b.j1 + ng, grid_.ny + ng)};
 }
 
-void Stepper::update_regime(const State& s, int ia, int ib, int ja, int jb) {
+void Stepper::update_regime(const State& s, double tau, int ia, int ib, int ja, int jb) {
     const int ng = kGhostLayers;
+    // Velocities friction holds at rest: S L S leaves up to tan(delta) g_n tau / 2 in a
+    // deposit after its last half source step (regime_row); g bounds every cell's g_n.
+    const double rest_speed = 0.5 * tan_delta_ * numerics_.gravity * tau;
+    const bool metric = terrain_.has_metric;
     if (regime_.size() != s.h.raw().size()) regime_.assign(s.h.raw().size(), kRegimeAtStart);
     // Each cell reads only its own previous regime: the rows go to the threads in any order.
 #pragma omp parallel for schedule(static) if (threaded_)
@@ -128,10 +132,19 @@ void Stepper::update_regime(const State& s, int ia, int ib, int ja, int jb) {
         // Differences across rows, clamped at the padding.
         const int jm = std::max(r - 1, -ng), jp = std::min(r + 1, grid_.ny + ng - 1);
         const int jmm = std::max(r - 2, -ng), jpp = std::min(r + 2, grid_.ny + ng - 1);
-        const RegimeRowInput in{s.h.row(r),   s.hu.row(r),  s.hv.row(r),   s.h.row(jm),
-                                s.hv.row(jm), s.h.row(jp),  s.hv.row(jp),  s.h.row(jmm),
-                                s.hv.row(jmm), s.h.row(jpp), s.hv.row(jpp)};
-        regime_row(in, regime_.data() + s.h.index(0, r), h_min_, ia, ib, -ng, grid_.nx + ng - 1);
+        RegimeRowInput in{s.h.row(r),   s.hu.row(r),  s.hv.row(r),   s.h.row(jm),
+                          s.hv.row(jm), s.h.row(jp),  s.hv.row(jp),  s.h.row(jmm),
+                          s.hv.row(jmm), s.h.row(jpp), s.hv.row(jpp)};
+        if (metric) {
+            in.sx = terrain_.sx.row(r);
+            in.sy = terrain_.sy.row(r);
+            in.sy_s = terrain_.sy.row(jm);
+            in.sy_n = terrain_.sy.row(jp);
+            in.sy_ss = terrain_.sy.row(jmm);
+            in.sy_nn = terrain_.sy.row(jpp);
+        }
+        regime_row(in, regime_.data() + s.h.index(0, r), h_min_, rest_speed, ia, ib, -ng,
+                   grid_.nx + ng - 1);
     }
 }
 
@@ -435,7 +448,7 @@ void Stepper::advect(State& s, double tau) {
     // strip writes into it.
     if (material_.earth_pressure != EarthPressureModel::isotropic) {
         const ActiveBox per_cell = per_cell_box(b);
-        update_regime(s, per_cell.i0, per_cell.i1, per_cell.j0, per_cell.j1);
+        update_regime(s, tau, per_cell.i0, per_cell.i1, per_cell.j0, per_cell.j1);
     }
     // Each thread takes a block of consecutive strips. Its first and last strips share
     // rows with the neighbouring blocks, whose strips read the old state there: their

@@ -129,18 +129,32 @@ namespace {
 // and imm, ipp (two away) of the row, y from the rows s, n, ss, nn. A velocity is a
 // (momentum, depth) pair, a thin or dry cell at rest (momentum 0 over depth 1), and
 // differences of velocities are compared multiplied out by both (positive) depths, so
-// that no division is needed.
-AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime, double hmin, int i,
-                                  int im, int ip, int imm, int ipp) {
+// that no division is needed. Metric: the DEM frame, whose velocities are horizontal;
+// the rest test takes the along-surface component u sqrt(1 + s_x^2), v sqrt(1 + s_y^2).
+template <bool Metric>
+AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime, double hmin,
+                                  double rest2, int i, int im, int ip, int imm, int ipp) {
     // Whether the velocity does not fall from a to b: b - a >= 0 up to a relative
     // 1e-12, so that round-off cannot make a vanishing difference (at rest, or a
     // uniformly moving block) compress. A vanishing difference extends: taken for
     // compressing, it made a mass released from rest start passive everywhere and grow a
     // period-4 pattern of regimes, with errors that rose under refinement
-    // (docs/verification.md, finding 2).
-    const auto extends = [](double qa, double da, double qb, double db) {
+    // (docs/verification.md, finding 2). Two velocities both within the rest speed
+    // (rest2 its square) vanish too: in a deposit the splitting leaves velocities of the
+    // order of a step's friction impulse that mean nothing, and regimes decided by them
+    // set neighbouring cells' pressures k_pass / k_act apart, a push the friction could
+    // not hold: with one advection per step at Courant 0.4 the parametric chute's deposit
+    // on 0.125 m cells kept moving, cell against cell, at up to 0.4 m/s for 40 s.
+    // ra, rb: 1 where the cell is within the rest speed, else 0.
+    const auto extends = [](double qa, double da, double ra, double qb, double db, double rb) {
         const double lo = qa * db, hi = qb * da;  // a and b times both depths
-        return hi - lo >= -1e-12 * std::max(std::abs(lo), std::abs(hi)) ? 1.0 : 0.0;
+        const double rises = hi - lo >= -1e-12 * std::max(std::abs(lo), std::abs(hi)) ? 1.0 : 0.0;
+        return std::max(rises, ra * rb);
+    };
+    // 1 where the along-surface component q/d sqrt(m) is within the rest speed (m = 1 + s^2,
+    // 1 in bed-fitted frames).
+    const auto rest_of = [rest2](double q, double d, double m) {
+        return q * q * m <= rest2 * (d * d) ? 1.0 : 0.0;
     };
     // Passive where the central difference compresses and a second scale confirms it:
     // both one-sided differences, or the difference over four cells. The central
@@ -155,28 +169,41 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
     // the cells got smaller; taking it for passive grew the patterns again.)
     const auto q_of = [hmin](double hh, double q) { return is_wet(hh, hmin) ? q : 0.0; };
     const auto d_of = [hmin](double hh) { return is_wet(hh, hmin) ? hh : 1.0; };
+    const auto m_of = [](const double* slope, int k) {
+        if constexpr (Metric) return 1.0 + slope[k] * slope[k];
+        return 1.0;
+    };
     // The new regime (1 active, 0 passive, as doubles like everything else in the loop)
-    // from the previous one and the cells ll, l, c, r, rr of a direction: depths h and
-    // momenta q.
-    const auto next = [&](double was_active, double hll, double qll, double hl, double ql,
-                          double hc, double qc, double hr, double qr, double hrr, double qrr) {
-        const double Qll = q_of(hll, qll), Dll = d_of(hll), Ql = q_of(hl, ql), Dl = d_of(hl);
-        const double Qc = q_of(hc, qc), Dc = d_of(hc), Qr = q_of(hr, qr), Dr = d_of(hr);
-        const double Qrr = q_of(hrr, qrr), Drr = d_of(hrr);
+    // from the previous one and the cells ll, l, c, r, rr of a direction: depths h,
+    // momenta q and metric factors m.
+    struct Cell {
+        double h, q, m;
+    };
+    const auto next = [&](double was_active, Cell ll, Cell l, Cell c, Cell r, Cell rr) {
+        const double Qll = q_of(ll.h, ll.q), Dll = d_of(ll.h), Ql = q_of(l.h, l.q), Dl = d_of(l.h);
+        const double Qc = q_of(c.h, c.q), Dc = d_of(c.h), Qr = q_of(r.h, r.q), Dr = d_of(r.h);
+        const double Qrr = q_of(rr.h, rr.q), Drr = d_of(rr.h);
+        const double Rll = rest_of(Qll, Dll, ll.m), Rl = rest_of(Ql, Dl, l.m);
+        const double Rc = rest_of(Qc, Dc, c.m), Rr = rest_of(Qr, Dr, r.m);
+        const double Rrr = rest_of(Qrr, Drr, rr.m);
         // 1 or 0 each.
-        const double central = extends(Ql, Dl, Qr, Dr);
+        const double central = extends(Ql, Dl, Rl, Qr, Dr, Rr);
         const double confirmed =
-            std::max((1.0 - extends(Ql, Dl, Qc, Dc)) * (1.0 - extends(Qc, Dc, Qr, Dr)),
-                     1.0 - extends(Qll, Dll, Qrr, Drr));
+            std::max((1.0 - extends(Ql, Dl, Rl, Qc, Dc, Rc)) * (1.0 - extends(Qc, Dc, Rc, Qr, Dr, Rr)),
+                     1.0 - extends(Qll, Dll, Rll, Qrr, Drr, Rrr));
         return std::max(central, (1.0 - confirmed) * was_active);
     };
     const double hh = in.h[i];
     const double was = static_cast<double>(regime[i]);
     const double was_y = was >= kRegimeYActive ? 1.0 : 0.0, was_x = was - kRegimeYActive * was_y;
-    const double x_active = next(was_x, in.h[imm], in.hu[imm], in.h[im], in.hu[im], hh, in.hu[i],
-                                 in.h[ip], in.hu[ip], in.h[ipp], in.hu[ipp]);
-    const double y_active = next(was_y, in.h_ss[i], in.hv_ss[i], in.h_s[i], in.hv_s[i], hh,
-                                 in.hv[i], in.h_n[i], in.hv_n[i], in.h_nn[i], in.hv_nn[i]);
+    const double x_active = next(was_x, {in.h[imm], in.hu[imm], m_of(in.sx, imm)},
+                                 {in.h[im], in.hu[im], m_of(in.sx, im)}, {hh, in.hu[i], m_of(in.sx, i)},
+                                 {in.h[ip], in.hu[ip], m_of(in.sx, ip)},
+                                 {in.h[ipp], in.hu[ipp], m_of(in.sx, ipp)});
+    const double y_active = next(was_y, {in.h_ss[i], in.hv_ss[i], m_of(in.sy_ss, i)},
+                                 {in.h_s[i], in.hv_s[i], m_of(in.sy_s, i)}, {hh, in.hv[i], m_of(in.sy, i)},
+                                 {in.h_n[i], in.hv_n[i], m_of(in.sy_n, i)},
+                                 {in.h_nn[i], in.hv_nn[i], m_of(in.sy_nn, i)});
     const double now = kRegimeXActive * x_active + kRegimeYActive * y_active;
     regime[i] = static_cast<RegimeFlags>(is_wet(hh, hmin) ? now : double{kRegimeAtStart});
 }
@@ -184,20 +211,23 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
 // Without tree-PRE: GCC 12 otherwise carries loads of one cell's neighbours over to the
 // next cell, a loop-carried value its vectoriser rejects ("unknown def-use cycle"), and
 // the loop stayed scalar: 10.6-29 ns per cell against 3.5 (bench_row_kernels).
+template <bool Metric>
 __attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void regime_row_clone(
-    const RegimeRowInput& input, RegimeFlags* regime, double h_min, int i0, int i1, int lo,
-    int hi) {
+    const RegimeRowInput& input, RegimeFlags* regime, double h_min, double rest_speed, int i0,
+    int i1, int lo, int hi) {
     // A local copy, so that GCC need not prove that the stores through regime leave the
     // caller's row pointers alone.
     const RegimeRowInput in = input;
+    const double rest2 = rest_speed * rest_speed;
     // The cells whose differences need no clamp (vectorised), then those within two
     // columns of the padding columns lo and hi, clamped.
     const int a = std::min(std::max(i0, lo + 2), i1), e = std::max(std::min(i1, hi - 1), a);
 #pragma omp simd
-    for (int i = a; i < e; ++i) regime_lane(in, regime, h_min, i, i - 1, i + 1, i - 2, i + 2);
+    for (int i = a; i < e; ++i)
+        regime_lane<Metric>(in, regime, h_min, rest2, i, i - 1, i + 1, i - 2, i + 2);
     const auto clamped = [&](int i) {
-        regime_lane(in, regime, h_min, i, std::max(i - 1, lo), std::min(i + 1, hi),
-                    std::max(i - 2, lo), std::min(i + 2, hi));
+        regime_lane<Metric>(in, regime, h_min, rest2, i, std::max(i - 1, lo), std::min(i + 1, hi),
+                            std::max(i - 2, lo), std::min(i + 2, hi));
     };
     for (int i = i0; i < a; ++i) clamped(i);
     for (int i = e; i < i1; ++i) clamped(i);
@@ -205,9 +235,12 @@ __attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void regime_row_c
 
 }  // namespace
 
-void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, int i0, int i1, int lo,
-                int hi) noexcept {
-    regime_row_clone(in, regime, h_min, i0, i1, lo, hi);
+void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, double rest_speed,
+                int i0, int i1, int lo, int hi) noexcept {
+    if (in.sx != nullptr)
+        regime_row_clone<true>(in, regime, h_min, rest_speed, i0, i1, lo, hi);
+    else
+        regime_row_clone<false>(in, regime, h_min, rest_speed, i0, i1, lo, hi);
 }
 
 // ---------------------------------------------------------------- pressure row

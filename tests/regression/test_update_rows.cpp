@@ -303,41 +303,66 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
     std::mt19937_64 rng(20261202);
     std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
     const int w = 43, ng = 2;  // columns -2 .. w - 3 with the padding clamp at both ends
-    const double h_min = 1e-3;
-    long passive = 0, active = 0, kept = 0, reset = 0;
+    const double h_min = 1e-3, rest_speed = 0.5;
+    long passive = 0, active = 0, kept = 0, reset = 0, at_rest = 0;
     for (int trial = 0; trial < 40; ++trial) {
         std::vector<double> h(5 * static_cast<std::size_t>(w)), hu(h.size()), hv(h.size());
         for (std::size_t k = 0; k < h.size(); ++k) {
             const double kind = unit(rng);
             h[k] = kind < 0.1 ? 0.0 : kind < 0.15 ? 0.5 * h_min : 3.0 * unit(rng);
-            // Some neighbours move alike (a vanishing difference extends).
-            hu[k] = h[k] * (kind > 0.85 ? 2.0 : 10.0 * sym(rng));
-            hv[k] = h[k] * (kind > 0.85 ? -1.0 : 10.0 * sym(rng));
+            // Some neighbours move alike (a vanishing difference extends), some are
+            // slower than the rest speed (a deposit's residue).
+            const double speed = kind > 0.85 ? 0.0 : kind > 0.6 ? 0.55 : 10.0;
+            hu[k] = h[k] * (kind > 0.85 ? 2.0 : speed * sym(rng));
+            hv[k] = h[k] * (kind > 0.85 ? -1.0 : speed * sym(rng));
         }
         std::vector<RegimeFlags> before(static_cast<std::size_t>(w));
         for (auto& r : before) r = static_cast<RegimeFlags>(4.0 * unit(rng));
         std::vector<RegimeFlags> regime = before;
+        // Odd trials in the DEM frame: surface gradients up to 2 (63 deg).
+        const bool metric = trial % 2 == 1;
+        std::vector<double> sx(h.size(), 0.0), sy(h.size(), 0.0);
+        if (metric)
+            for (std::size_t k = 0; k < h.size(); ++k) {
+                sx[k] = 2.0 * sym(rng);
+                sy[k] = 2.0 * sym(rng);
+            }
         const auto col0 = [&](std::vector<double>& f, int row) { return f.data() + row * w + ng; };
-        const RegimeRowInput in{col0(h, 2),  col0(hu, 2), col0(hv, 2), col0(h, 1),
-                                col0(hv, 1), col0(h, 3),  col0(hv, 3), col0(h, 0),
-                                col0(hv, 0), col0(h, 4),  col0(hv, 4)};
+        RegimeRowInput in{col0(h, 2),  col0(hu, 2), col0(hv, 2), col0(h, 1),
+                          col0(hv, 1), col0(h, 3),  col0(hv, 3), col0(h, 0),
+                          col0(hv, 0), col0(h, 4),  col0(hv, 4)};
+        if (metric) {
+            in.sx = col0(sx, 2);
+            in.sy = col0(sy, 2);
+            in.sy_s = col0(sy, 1);
+            in.sy_n = col0(sy, 3);
+            in.sy_ss = col0(sy, 0);
+            in.sy_nn = col0(sy, 4);
+        }
         const int lo = -ng, hi = w - ng - 1;
-        regime_row(in, regime.data() + ng, h_min, lo, hi + 1, lo, hi);
+        regime_row(in, regime.data() + ng, h_min, rest_speed, lo, hi + 1, lo, hi);
         // The reference: a velocity is (momentum, depth), at rest (0, 1) where thin or
-        // dry; b - a compared multiplied out by both depths.
+        // dry; b - a compared multiplied out by both depths; two velocities whose
+        // along-surface components (q/d sqrt(1 + s^2)) are within the rest speed are equal.
         const auto wet = [h_min](double d) { return d >= h_min && d > 0.0; };
-        const auto extends = [&](int ka, int kb, const std::vector<double>& q) {
+        const double rest2 = rest_speed * rest_speed;
+        const auto extends = [&](int ka, int kb, const std::vector<double>& q,
+                                 const std::vector<double>& slope) {
             const double qa = wet(h[ka]) ? q[ka] : 0.0, da = wet(h[ka]) ? h[ka] : 1.0;
             const double qb = wet(h[kb]) ? q[kb] : 0.0, db = wet(h[kb]) ? h[kb] : 1.0;
+            const double ma = 1.0 + slope[ka] * slope[ka], mb = 1.0 + slope[kb] * slope[kb];
             const double x = qa * db, y = qb * da;
-            return y - x >= -1e-12 * std::max(std::abs(x), std::abs(y));
+            const bool falls = y - x < -1e-12 * std::max(std::abs(x), std::abs(y));
+            const bool rest = qa * qa * ma <= rest2 * (da * da) && qb * qb * mb <= rest2 * (db * db);
+            if (falls && rest) ++at_rest;
+            return !falls || rest;
         };
         // Cells ll, l, c, r, rr (element indices) of one direction.
         const auto next = [&](bool was, int ll, int l, int c, int r, int rr,
-                              const std::vector<double>& q) {
-            if (extends(l, r, q)) return true;
-            const bool confirmed =
-                (!extends(l, c, q) && !extends(c, r, q)) || !extends(ll, rr, q);
+                              const std::vector<double>& q, const std::vector<double>& slope) {
+            if (extends(l, r, q, slope)) return true;
+            const bool confirmed = (!extends(l, c, q, slope) && !extends(c, r, q, slope)) ||
+                                   !extends(ll, rr, q, slope);
             if (!confirmed) ++kept;
             return !confirmed && was;
         };
@@ -348,9 +373,9 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
             RegimeFlags ref = kRegimeAtStart;
             if (wet(h[k])) {
                 const bool x = next((was & kRegimeXActive) != 0, col(i - 2), col(i - 1), k,
-                                    col(i + 1), col(i + 2), hu);
+                                    col(i + 1), col(i + 2), hu, sx);
                 const bool y = next((was & kRegimeYActive) != 0, k - 2 * w, k - w, k, k + w,
-                                    k + 2 * w, hv);
+                                    k + 2 * w, hv, sy);
                 ref = static_cast<RegimeFlags>((x ? kRegimeXActive : 0) | (y ? kRegimeYActive : 0));
                 (x ? active : passive)++;
             } else {
@@ -364,6 +389,7 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
     EXPECT_GT(passive, 100);
     EXPECT_GT(kept, 100);
     EXPECT_GT(reset, 50);
+    EXPECT_GT(at_rest, 100);  // falling differences that the rest speed cancels
 }
 
 TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
@@ -402,7 +428,7 @@ TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
     const int lo = -ng, hi = w - ng - 1;
     for (const RegimeFlags was : {kRegimeAtStart, kRegimeYActive}) {  // x active, x passive
         std::vector<RegimeFlags> regime(static_cast<std::size_t>(w), was);
-        regime_row(in, regime.data() + ng, 1e-3, lo, hi + 1, lo, hi);
+        regime_row(in, regime.data() + ng, 1e-3, 0.0, lo, hi + 1, lo, hi);
         for (int c = 2; c + 2 < w; ++c) {  // the end columns see clamped differences
             const RegimeFlags got = regime[static_cast<std::size_t>(c)];
             if (c == dry) {
@@ -421,4 +447,47 @@ TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
     EXPECT_LT(u[slow] - u[slow - 2], 0.0);
     EXPECT_GT(u[fall0] - u[fall0 - 1], 0.0);
     EXPECT_GT(u[fall1 + 1] - u[fall1], 0.0);
+}
+
+TEST(UpdateRows, RegimeTakesVelocitiesWithinTheRestSpeedForEqual) {
+    // One row of wet cells whose u falls by 0.02 per cell from +0.1 to -0.1 (a deposit's
+    // residue that compresses everywhere), with one cell at 0.4 in the middle.
+    // With rest speed 0: every cell compresses, confirmed: passive. With rest speed 0.15:
+    // the differences between cells within 0.15 vanish (active); the cells next to the
+    // fast one see it outside the rest speed and stay decided by the differences.
+    const int w = 24, ng = 2, fast = 12;
+    std::vector<double> h(5 * static_cast<std::size_t>(w), 0.5), hu(h.size()), hv(h.size());
+    std::vector<double> u(static_cast<std::size_t>(w));
+    for (int c = 0; c < w; ++c) u[static_cast<std::size_t>(c)] = 0.1 - 0.2 * c / (w - 1);
+    u[fast] = 0.4;
+    for (int r = 0; r < 5; ++r)
+        for (int c = 0; c < w; ++c)
+            hu[static_cast<std::size_t>(r * w + c)] = 0.5 * u[static_cast<std::size_t>(c)];
+    const auto col0 = [&](std::vector<double>& f, int row) { return f.data() + row * w + ng; };
+    const RegimeRowInput in{col0(h, 2),  col0(hu, 2), col0(hv, 2), col0(h, 1),
+                            col0(hv, 1), col0(h, 3),  col0(hv, 3), col0(h, 0),
+                            col0(hv, 0), col0(h, 4),  col0(hv, 4)};
+    const int lo = -ng, hi = w - ng - 1;
+    for (const double rest : {0.0, 0.15}) {
+        std::vector<RegimeFlags> regime(static_cast<std::size_t>(w), kRegimeAtStart);
+        regime_row(in, regime.data() + ng, 1e-3, rest, lo, hi + 1, lo, hi);
+        for (int c = 2; c + 2 < w; ++c) {
+            const RegimeFlags got = regime[static_cast<std::size_t>(c)];
+            if (c >= fast - 2 && c <= fast + 2) continue;  // the fast cell in their stencil
+            EXPECT_EQ(got, rest == 0.0 ? kRegimeYActive : kRegimeAtStart)
+                << "cell " << c << ", rest speed " << rest;
+        }
+        // The cell after the fast one: its central difference u[fast+2] - u[fast] = -0.42
+        // involves the fast cell, so the rest speed does not cancel it. Confirmed without
+        // a rest speed (passive); with it, its confirmations lie within the rest speed and
+        // vanish, so the cell keeps its regime. A cell that was passive stays passive
+        // (a cancelled central difference would have made it active).
+        EXPECT_EQ(regime[static_cast<std::size_t>(fast + 1)],
+                  rest == 0.0 ? kRegimeYActive : kRegimeAtStart)
+            << "rest " << rest;
+        std::vector<RegimeFlags> was_passive(static_cast<std::size_t>(w), kRegimeYActive);
+        regime_row(in, was_passive.data() + ng, 1e-3, rest, lo, hi + 1, lo, hi);
+        EXPECT_EQ(was_passive[static_cast<std::size_t>(fast + 1)], kRegimeYActive) << "rest " << rest;
+        EXPECT_EQ(was_passive[5], rest == 0.0 ? kRegimeYActive : kRegimeAtStart) << "rest " << rest;
+    }
 }

@@ -55,22 +55,30 @@ inline constexpr RegimeFlags kRegimeXActive = 1, kRegimeYActive = 2;
 inline constexpr RegimeFlags kRegimeAtStart = kRegimeXActive | kRegimeYActive;
 
 // Rows the regime stage reads: the state (depth and momenta) of row r, and the depth
-// and y-momentum of the rows one (s, n) and two (ss, nn) below and above it.
+// and y-momentum of the rows one (s, n) and two (ss, nn) below and above it; in the DEM
+// frame the surface gradient s_x of row r and s_y of the five rows (null in bed-fitted
+// frames: all or none).
 struct RegimeRowInput {
     const double *h, *hu, *hv;
     const double *h_s, *hv_s, *h_n, *hv_n;
     const double *h_ss, *hv_ss, *h_nn, *hv_nn;
+    const double *sx = nullptr, *sy = nullptr;
+    const double *sy_s = nullptr, *sy_n = nullptr, *sy_ss = nullptr, *sy_nn = nullptr;
 };
 
 // Updates the regime of cells i0 .. i1 - 1 of one row in place (cell_rows.cpp,
 // regime_lane): passive where the central velocity difference is negative and a second
 // scale confirms it (both one-sided differences negative, or the difference over four
 // cells); active where the central difference is not negative; otherwise (a central
-// compression that nothing confirms) the cell keeps the regime it had. Each cell reads
-// only its own previous regime, so rows may be updated in any order and by any thread.
-// The x-differences are clamped to the columns lo and hi. Pointers address column 0.
-void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, int i0, int i1,
-                int lo, int hi) noexcept;
+// compression that nothing confirms) the cell keeps the regime it had. Two velocities
+// whose along-surface components are both at most rest_speed count as equal (their
+// difference vanishes, so it extends): the stepper passes tan(delta) g tau / 2, below
+// which a velocity is the splitting's residue in a deposit at rest (docs/numerics.md,
+// advection step 2). Each cell reads only its own previous regime,
+// so rows may be updated in any order and by any thread. The x-differences are clamped
+// to the columns lo and hi. Pointers address column 0.
+void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, double rest_speed,
+                int i0, int i1, int lo, int hi) noexcept;
 
 // Rows the pressure stage reads: the state's depth and velocity quotients of row r
 // (u = hu / h, v = hv / h of every cell, as state_velocity_row computes them), the

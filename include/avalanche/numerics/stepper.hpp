@@ -136,8 +136,9 @@ class Stepper {
     // The cells of the per-cell stage (regimes, velocity quotients, pressure) for the
     // active box b: b widened by the ghost layers, into the padding.
     [[nodiscard]] ActiveBox per_cell_box(const ActiveBox& b) const;
-    // The regime of the cells [ia, ib) x [ja, jb) from the state s (regime_row).
-    void update_regime(const State& s, int ia, int ib, int ja, int jb);
+    // The regime of the cells [ia, ib) x [ja, jb) from the state s before an advection
+    // over tau (regime_row).
+    void update_regime(const State& s, double tau, int ia, int ib, int ja, int jb);
     // Advects rows [j_begin, j_end) of s; the updated rows go into s itself, or into
     // w.waiting[wait_slot] when wait_slot is 0 or 1.
     void advect_strip(State& s, double tau, int j_begin, int j_end, StripBuffers& w,
