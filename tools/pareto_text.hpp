@@ -39,10 +39,10 @@ The presets (`--quality`, include/avalanche/app/quality_preset.hpp) are stated a
 the chute with a 0.5 m base cell: `draft` doubles the cell size and the Courant number
 and advects once per step (SLS), `standard` is the default (the paper's scheme and
 Courant number 0.2, L S L), `fine` halves the cell size at Courant 0.4 with SLS. On the
-chute, draft costs well under a tenth of standard (0.06-0.07 in the last two runs of the
-study: the CPU times of these short runs are noisy) for 1.2x its deposit error (runout
-within a cell of 1 m); fine costs 1.5-2x for 0.6x the deposit error and a twentieth of
-its runout error.
+chute, draft costs well under a tenth of standard (0.06-0.07 in the last three runs of
+the study: the CPU times of these short runs are noisy) for 1.2x its deposit error
+(runout within a cell of 1 m); fine costs 1.5-1.9x for 0.6x the deposit error and a
+quarter of its runout error.
 
 Why SLS at Courant 0.4: L S L advects twice per step, each time over half the step, so
 at Courant C every advection runs at Courant C/2; SLS at Courant 0.2 repeats L S L at
@@ -59,10 +59,11 @@ passed no flux in the WAF faces, kept their mass and were accelerated step after
 to 20 m/s, which set the time step (fixed in the transverse predictor, docs/numerics.md
 step 3; L S L runs had them too, e.g. the bumpy chute of docs/verification.md section
 4 took 1091 steps instead of 759). SLS's deposit error keeps falling with the cell size
-(0.142, 0.107, 0.069 from 1 m to 0.25 m) where the L S L runs level off (0.142, 0.116,
+(0.141, 0.109, 0.066 from 1 m to 0.25 m) where the L S L runs level off (0.140, 0.117,
 0.107 at Courant 0.2), although the reference is itself an L S L run. That difference is
 not understood yet. The reference itself still moves with the cell size (runout
-51.25, 51.12, 50.94 and 50.59 m at 0.5, 0.25, 0.125 and 0.0625 m). Since
+51.25, 51.12, 50.94 and 50.41 m at 0.5, 0.25, 0.125 and 0.0625 m; 50.59 m at 0.0625 m
+before the regime's rest speed of 2026-12-02, third session). Since
 2026-12-02 a cell whose compression nothing confirms keeps its Savage-Hutter regime
 (docs/verification.md, finding 2): the chute's errors here fell by about a fifth with
 it (standard 0.143 -> 0.116, draft 0.164 -> 0.142, fine 0.088 -> 0.069); they are still
@@ -75,7 +76,14 @@ tail runs into the deposit are first order), so on that problem refinement buys 
 than on the smooth similarity solution, where halving the cell at Courant 0.4 cuts the
 error 2.9 to 3.5x. SLS stays stable at the extremes: the extreme-case matrix
 (tests/regression) runs it at Courant 0.5 on the 80 deg plane, the cliffs and the
-colliding flows, and L S L at Courant numbers up to 0.5. The cell-size factor applies to
+colliding flows, and L S L at Courant numbers up to 0.5. But a deposit on cells much
+finer than its depth need not come to rest with SLS at Courant 0.4: on this chute
+(deposit about 0.27 m deep) at 0.0625 m it keeps moving, cell against cell, at up to
+0.4 m/s (docs/numerics.md, advection step 2); at 0.125 m it did too (until 46 s, relative
+L1 error 0.31) before the regime's rest speed (2026-12-02, third session), and now stops
+at 7 s, 0.019 from the reference (runout 50.44 m against 50.41 m). L S L at Courant
+0.2 stops at both. A run's `final_kinetic_energy_fraction` (summary.json) shows whether
+its deposit came to rest. The cell-size factor applies to
 the scene's cell size (`numerics.cell_size`, or the DEM's resolution when automatic);
 explicit `--scheme`, `--limiter`, `--cfl` and `--cell-size` flags win over the preset.
 )";
