@@ -188,22 +188,22 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
         const double Rrr = rest_of(Qrr, Drr, rr.m);
         // 1 or 0 each.
         const double central = extends(Ql, Dl, Rl, Qr, Dr, Rr);
-        const double confirmed =
-            std::max((1.0 - extends(Ql, Dl, Rl, Qc, Dc, Rc)) * (1.0 - extends(Qc, Dc, Rc, Qr, Dr, Rr)),
-                     1.0 - extends(Qll, Dll, Rll, Qrr, Drr, Rrr));
+        const double confirmed = std::max(
+            (1.0 - extends(Ql, Dl, Rl, Qc, Dc, Rc)) * (1.0 - extends(Qc, Dc, Rc, Qr, Dr, Rr)),
+            1.0 - extends(Qll, Dll, Rll, Qrr, Drr, Rrr));
         return std::max(central, (1.0 - confirmed) * was_active);
     };
     const double hh = in.h[i];
     const double was = static_cast<double>(regime[i]);
     const double was_y = was >= kRegimeYActive ? 1.0 : 0.0, was_x = was - kRegimeYActive * was_y;
-    const double x_active = next(was_x, {in.h[imm], in.hu[imm], m_of(in.sx, imm)},
-                                 {in.h[im], in.hu[im], m_of(in.sx, im)}, {hh, in.hu[i], m_of(in.sx, i)},
-                                 {in.h[ip], in.hu[ip], m_of(in.sx, ip)},
-                                 {in.h[ipp], in.hu[ipp], m_of(in.sx, ipp)});
-    const double y_active = next(was_y, {in.h_ss[i], in.hv_ss[i], m_of(in.sy_ss, i)},
-                                 {in.h_s[i], in.hv_s[i], m_of(in.sy_s, i)}, {hh, in.hv[i], m_of(in.sy, i)},
-                                 {in.h_n[i], in.hv_n[i], m_of(in.sy_n, i)},
-                                 {in.h_nn[i], in.hv_nn[i], m_of(in.sy_nn, i)});
+    const double x_active =
+        next(was_x, {in.h[imm], in.hu[imm], m_of(in.sx, imm)},
+             {in.h[im], in.hu[im], m_of(in.sx, im)}, {hh, in.hu[i], m_of(in.sx, i)},
+             {in.h[ip], in.hu[ip], m_of(in.sx, ip)}, {in.h[ipp], in.hu[ipp], m_of(in.sx, ipp)});
+    const double y_active = next(
+        was_y, {in.h_ss[i], in.hv_ss[i], m_of(in.sy_ss, i)},
+        {in.h_s[i], in.hv_s[i], m_of(in.sy_s, i)}, {hh, in.hv[i], m_of(in.sy, i)},
+        {in.h_n[i], in.hv_n[i], m_of(in.sy_n, i)}, {in.h_nn[i], in.hv_nn[i], m_of(in.sy_nn, i)});
     const double now = kRegimeXActive * x_active + kRegimeYActive * y_active;
     regime[i] = static_cast<RegimeFlags>(is_wet(hh, hmin) ? now : double{kRegimeAtStart});
 }
