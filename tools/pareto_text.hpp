@@ -79,8 +79,8 @@ error 2.9 to 3.5x. SLS stays stable at the extremes: the extreme-case matrix
 colliding flows, and L S L at Courant numbers up to 0.5. But a deposit on cells much
 finer than its depth need not come to rest with SLS at Courant 0.4: on this chute
 (deposit about 0.27 m deep) at 0.0625 m it keeps moving, cell against cell, at up to
-0.4 m/s (docs/numerics.md, advection step 2); at 0.125 m it did too (until 46 s, relative
-L1 error 0.31) before the regime's rest speed (2026-12-02, third session), and now stops
+0.4 m/s (docs/numerics.md, advection step 2); at 0.125 m it did too (for 40 s and more,
+relative L1 error 0.31) before the regime's rest speed (2026-12-02, third session), and now stops
 at 7 s, 0.019 from the reference (runout 50.44 m against 50.41 m). L S L at Courant
 0.2 stops at both. A run's `final_kinetic_energy_fraction` (summary.json) shows whether
 its deposit came to rest. The cell-size factor applies to

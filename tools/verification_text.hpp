@@ -201,8 +201,8 @@ inline constexpr const char* kFindingsText = R"(
    velocities of the size of the friction impulse the splitting leaves in a deposit
    decided each cell's regime, neighbours in opposite regimes pushed each other harder
    than friction holds, and the deposit boiled at up to 0.4 m/s, cell against cell,
-   until 46 s (7 s on 0.25 m cells; relative L1 distance 0.31 from the chute's
-   reference). Velocities whose along-surface components are both within the rest
+   for 40 s and more (it stops at 7 s on 0.25 m cells; relative L1 distance 0.31 from
+   the chute's reference). Velocities whose along-surface components are both within the rest
    speed tan(delta) g tau / 2 now count as equal (docs/numerics.md step 2;
    `DepositRest.ChuteDepositStopsWithOneAdvectionPerStepAtCourant04OnFineCells`):
    that run stops at 7 s, 0.019 from the reference; flows are unchanged (the caps, dam breaks and orders of this
