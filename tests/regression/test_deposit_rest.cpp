@@ -14,23 +14,16 @@
 
 #include "avalanche/core/simulation.hpp"
 #include "support/analytic_chute.hpp"
-#include "support/analytic_harness.hpp"
 
 using namespace avalanche;
 using namespace avalanche::analytic;
 
 TEST(DepositRest, ChuteDepositStopsWithOneAdvectionPerStepAtCourant04OnFineCells) {
-    const ScopedThreads serial(1);
-    const ChuteScene scene = make_chute_scene(0.125, 60.0, 0.0);
     NumericsParams n;
     n.splitting = Splitting::sls;
     n.cfl = 0.4;
     n.t_end = 30.0;
-    n.output_interval = n.t_end;
-    const MaterialParams material;  // Savage-Hutter, phi 35, delta 20 deg
-    Simulation sim(scene.grid, scene.terrain, material, n, scene.initial,
-                   effective_h_min(n, scene.initial, scene.terrain));
-    const RunStatistics st = sim.run();
+    const RunStatistics st = run_chute(n, 0.125, 60.0, 0.0).stats;
     // The cap reaches the runout at about 5 s and stops there within 2 s (as on 0.25 m
     // cells, and at Courant 0.3); the stop rule then needs 1 s below its threshold.
     EXPECT_NE(st.end_reason, EndReason::end_time);

@@ -61,15 +61,10 @@ class Watch : public StepObserver {
 };
 }  // namespace
 
-ChuteOutcome run_chute(Scheme scheme, Boundary boundary, double cell_size, double length,
-                       double relief, double t_end) {
+ChuteOutcome run_chute(NumericsParams n, double cell_size, double length, double relief) {
     const ScopedThreads serial(1);  // see analytic_harness.hpp
     const ChuteScene scene = make_chute_scene(cell_size, length, relief);
-    NumericsParams n;
-    n.scheme = scheme;
-    n.boundary = boundary;
-    n.t_end = t_end;
-    n.output_interval = t_end;
+    n.output_interval = n.t_end;
     const MaterialParams material;  // Savage-Hutter, phi 35, delta 20 deg
     Simulation sim(scene.grid, scene.terrain, material, n, scene.initial,
                    effective_h_min(n, scene.initial, scene.terrain));
@@ -80,7 +75,18 @@ ChuteOutcome run_chute(Scheme scheme, Boundary boundary, double cell_size, doubl
     o.min_h = watch.min_h;
     o.asymmetry = watch.asymmetry;
     o.steps = o.stats.steps;
+    o.grid = scene.grid;
+    o.final_state = sim.state();
     return o;
+}
+
+ChuteOutcome run_chute(Scheme scheme, Boundary boundary, double cell_size, double length,
+                       double relief, double t_end) {
+    NumericsParams n;
+    n.scheme = scheme;
+    n.boundary = boundary;
+    n.t_end = t_end;
+    return run_chute(n, cell_size, length, relief);
 }
 
 }  // namespace avalanche::analytic

@@ -27,15 +27,20 @@ struct ChuteScene {
 // runout) lets it leave through the open lower edge. relief: amplitude A (m), 0 = smooth.
 ChuteScene make_chute_scene(double cell_size, double length, double relief, double gravity = 9.81);
 
-// A Simulation::run of the scene (Savage-Hutter, phi 35, delta 20 deg) to t_end with
-// an observer that records, after every step, the smallest depth and the largest
-// mirror asymmetry max |h(i, j) - h(i, ny-1-j)|.
+// A Simulation::run of the scene (Savage-Hutter, phi 35, delta 20 deg) on one thread
+// to t_end with an observer that records, after every step, the smallest depth and the
+// largest mirror asymmetry max |h(i, j) - h(i, ny-1-j)|; the state the run ends with.
 struct ChuteOutcome {
     RunStatistics stats;
     double min_h = 0.0;
     double asymmetry = 0.0;
     std::uint64_t steps = 0;
+    Grid grid;
+    State final_state;
 };
+// n: the numerics (scheme, boundary, splitting, Courant number, t_end); the output
+// interval is set to n.t_end.
+ChuteOutcome run_chute(NumericsParams n, double cell_size, double length, double relief);
 ChuteOutcome run_chute(Scheme scheme, Boundary boundary, double cell_size, double length,
                        double relief, double t_end);
 

@@ -8,7 +8,6 @@
 
 #include "avalanche/core/simulation.hpp"
 #include "support/analytic_chute.hpp"
-#include "support/analytic_harness.hpp"
 
 using namespace avalanche;
 using namespace avalanche::analytic;
@@ -21,29 +20,24 @@ struct EndedRun {
 };
 
 EndedRun run_chute_to(double cell_size, double t_end) {
-    const ScopedThreads serial(1);
-    const ChuteScene scene = make_chute_scene(cell_size, 60.0, 0.0);
     NumericsParams n;
     n.t_end = t_end;
-    n.output_interval = t_end;
-    const MaterialParams material;  // Savage-Hutter, phi 35, delta 20 deg
-    Simulation sim(scene.grid, scene.terrain, material, n, scene.initial,
-                   effective_h_min(n, scene.initial, scene.terrain));
+    const ChuteOutcome o = run_chute(n, cell_size, 60.0, 0.0);
     EndedRun r;
-    r.stats = sim.run();
+    r.stats = o.stats;
     // The definition, sum of h |u|^2 / 2 dA, evaluated directly: every cell, not only the
     // solver's active box, and without the scan's row sums.
-    const State& s = sim.state();
+    const State& s = o.final_state;
     long double sum = 0.0L;
-    for (int j = 0; j < scene.grid.ny; ++j)
-        for (int i = 0; i < scene.grid.nx; ++i) {
+    for (int j = 0; j < o.grid.ny; ++j)
+        for (int i = 0; i < o.grid.nx; ++i) {
             const double h = s.h(i, j);
             if (h <= 0.0) continue;
             const long double u = s.hu(i, j) / static_cast<long double>(h);
             const long double v = s.hv(i, j) / static_cast<long double>(h);
             sum += 0.5L * h * (u * u + v * v);
         }
-    r.kinetic_energy = static_cast<double>(sum * scene.grid.dx * scene.grid.dy);
+    r.kinetic_energy = static_cast<double>(sum * o.grid.dx * o.grid.dy);
     return r;
 }
 
