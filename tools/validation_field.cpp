@@ -21,11 +21,8 @@
 #include <ogrsf_frmts.h>
 
 #include "avalanche/app/cli.hpp"
-#include "avalanche/app/prepared_scene.hpp"
 #include "avalanche/core/error.hpp"
-#include "avalanche/core/simulation.hpp"
-#include "avalanche/io/scenario_file.hpp"
-#include "avalanche/io/sha256.hpp"
+#include "avalanche/io/effective_config.hpp"
 #include "avalanche/gis/quicklook.hpp"
 #include "avalanche/gis/raster_reader.hpp"
 #include "validation_study.hpp"
@@ -165,8 +162,10 @@ TwinRun twin_run(const std::string& scenario, const std::string& work_dir,
     const std::string summary_path = t.dir + "/summary.json";
     if (std::filesystem::exists(summary_path)) {
         const nlohmann::json j = read_json(summary_path);
+        // Reused only when computed from the same sources, as the batch does.
         if (j.value("complete", false) && j.at("parameters") == expected &&
-            j.at("inputs") == sweep_summary.at("inputs")) {
+            j.at("inputs") == sweep_summary.at("inputs") &&
+            j.value("source_hash", "") == source_hash()) {
             t.summary = j;
             t.reused = true;
             return t;
@@ -323,50 +322,10 @@ std::string twin_section(const std::string& scenario, const std::string& out,
 
 }  // namespace
 
-// What the solver makes of the field scene, in a few seconds: the scenario on 200 m
-// cells for 30 s of flow, and the SHA-256 of the final state's bytes. The batch resumes
-// on equal configurations (docs/batch.md), which do not see a change of the solver; a
-// changed fingerprint recomputes every field run instead (until 2026-12-02 the section
-// kept the runs of an older solver across several solver changes).
-std::string solver_fingerprint(const std::string& scenario) {
-    Scenario s = load_scenario(scenario);
-    s.cell_size = 200.0;
-    s.numerics.t_end = 30.0;
-    s.numerics.output_interval = s.numerics.t_end;
-    PreparedScene scene = prepare_scene(s);
-    const double h_min = effective_h_min(s.numerics, scene.initial, scene.terrain);
-    Simulation sim(scene.grid, scene.terrain, s.material, s.numerics, std::move(scene.initial),
-                   h_min);
-    sim.run();
-    std::string bytes;
-    for (const Field2D* f : {&sim.state().h, &sim.state().hu, &sim.state().hv})
-        bytes.append(reinterpret_cast<const char*>(f->raw().data()),
-                     f->raw().size() * sizeof(double));
-    return sha256_hex(bytes);
-}
-
-// Removes the field runs of the work folder when they were computed by another solver
-// (fingerprint file missing or different); returns the current fingerprint.
-std::string forget_runs_of_another_solver(const std::string& scenario, const StudyOptions& o) {
-    const std::string now = solver_fingerprint(scenario);
-    const std::string path = o.work_dir + "/field_solver_fingerprint.txt";
-    std::string before;
-    if (std::ifstream f(path); f) std::getline(f, before);
-    if (before != now) {
-        std::cerr << "field case: the solver changed (fingerprint " << now.substr(0, 12)
-                  << ", runs from " << (before.empty() ? "unknown" : before.substr(0, 12))
-                  << "): recomputing every field run\n";
-        std::filesystem::remove_all(o.work_dir + "/field_fluchthorn");
-        std::filesystem::remove_all(o.work_dir + "/field_fluchthorn_twin");
-    }
-    return now;
-}
-
 std::string field_section(const StudyOptions& o) {
     const std::string scenario = o.source_dir + "/scenarios/field_fluchthorn/scenario.toml";
     const std::string out = o.work_dir + "/field_fluchthorn";
     std::filesystem::create_directories(o.work_dir);
-    const std::string fingerprint = forget_runs_of_another_solver(scenario, o);
     std::string sweep = "delta=";
     for (std::size_t k = 0; k < kDeltas.size(); ++k) sweep += (k ? "," : "") + kDeltas[k];
     // The cell size is the scenario's own: batch cannot sweep or override it (docs/batch.md).
@@ -376,7 +335,6 @@ std::string field_section(const StudyOptions& o) {
               << " --out " << out << " --parallel 1\n";
     const int rc = run_cli(cli);
     if (rc != 0) throw InputError(out, "the field batch failed with exit code " + std::to_string(rc));
-    std::ofstream(o.work_dir + "/field_solver_fingerprint.txt") << fingerprint << "\n";
 
     const auto rows = read_comparison(out + "/comparison.csv");
     double run_wall = 0.0;  // the runs' own times: valid even when the batch was resumed
@@ -389,8 +347,8 @@ std::string field_section(const StudyOptions& o) {
        << sweep << " --out <dir> --parallel 1`, " << rows.size() << " scenarios; their runs took "
        << fmt("%.0f", run_wall) << " s of wall time in all (the `wall` column, as "
        << "`comparison.csv` reports it, one thread on a machine shared with other jobs; a "
-       << "rerun resumes the batch and only recomputes what changed, and every run when the "
-       << "solver changed: the study compares a fingerprint of a 200 m run of the scene).\n\n"
+       << "rerun resumes the batch and only recomputes what changed: every run when the "
+       << "program's sources changed, as the batch compares their hash).\n\n"
        << "| delta (deg) | runout L (m) | travel angle (deg) | L/H | affected area (km^2) | max "
           "depth (m) | max speed (m/s) | deposit volume (10^6 m^3) | released (10^6 m^3) | "
           "left the DEM (10^6 m^3) | end | wall (s) |\n"

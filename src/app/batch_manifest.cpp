@@ -19,6 +19,7 @@ Manifest read_manifest(const std::string& path) {
             ManifestEntry e;
             e.parameters = s.at("parameters");
             e.config_hash = s.at("config_hash").get<std::string>();
+            e.source_hash = s.value("source_hash", "");
             e.complete = s.at("complete").get<bool>();
             e.error = s.value("error", "");
             m[s.at("id").get<std::string>()] = e;
@@ -37,6 +38,7 @@ void write_manifest(const std::string& path, const Manifest& manifest,
         nlohmann::json s = {{"id", id},
                             {"parameters", e.parameters},
                             {"config_hash", e.config_hash},
+                            {"source_hash", e.source_hash},
                             {"complete", e.complete}};
         if (!e.error.empty()) s["error"] = e.error;
         scenarios.push_back(std::move(s));
@@ -45,7 +47,8 @@ void write_manifest(const std::string& path, const Manifest& manifest,
     write_file_atomically(path, js.dump(2) + "\n");
 }
 
-bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash) {
+bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash,
+                      const std::string& source_hash) {
     const auto summary = std::filesystem::path(scenario_dir) / "summary.json";
     std::error_code ec;
     if (!std::filesystem::exists(summary, ec)) return false;
@@ -53,6 +56,7 @@ bool outputs_complete(const std::string& scenario_dir, const std::string& config
         std::ifstream in(summary);
         const auto js = nlohmann::json::parse(in);
         return js.at("config_hash").get<std::string>() == config_hash &&
+               js.value("source_hash", "") == source_hash &&
                js.at("end_reason").get<std::string>() != "interrupted";
     } catch (const nlohmann::json::exception&) {
         return false;  // unreadable: recompute rather than trust it

@@ -83,22 +83,28 @@ nlohmann::json parameters_json(const BatchCase& c) {
     return p;
 }
 
-// Marks what a previous batch completed with the same configuration; logs the rest.
+// Marks what a previous batch completed with the same configuration and from the same
+// sources; logs the rest.
 Manifest decide_skips(std::vector<Planned>& planned, const Manifest& old) {
     Manifest manifest;
+    const std::string sources = source_hash();
     for (auto& p : planned) {
-        ManifestEntry e{parameters_json(p.batch_case), p.hash, false, ""};
+        ManifestEntry e{parameters_json(p.batch_case), p.hash, sources, false, ""};
         const auto it = old.find(p.batch_case.id);
         const char* reason = "new";
         if (it != old.end()) {
             const bool same = it->second.config_hash == p.hash;
-            p.skip = same && it->second.complete && outputs_complete(p.dir, p.hash);
-            reason = !same ? "configuration changed" : "outputs incomplete";
+            const bool same_sources = it->second.source_hash == sources;
+            p.skip = same && same_sources && it->second.complete &&
+                     outputs_complete(p.dir, p.hash, sources);
+            reason = !same           ? "configuration changed"
+                     : !same_sources ? "computed by a program built from other sources"
+                                     : "outputs incomplete";
         }
         e.complete = p.skip;
         if (p.skip)
-            spdlog::info("skipping {}: complete, configuration {} unchanged", p.batch_case.id,
-                         p.hash);
+            spdlog::info("skipping {}: complete, configuration {} and sources {} unchanged",
+                         p.batch_case.id, p.hash, sources);
         else
             spdlog::info("computing {} ({})", p.batch_case.id, reason);
         manifest[p.batch_case.id] = e;
@@ -260,7 +266,8 @@ int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const Glob
                                   {"sweeps", args.sweeps},
                                   {"table", args.table},
                                   {"observed", args.observed},
-                                  {"software_version", software_version()}};
+                                  {"software_version", software_version()},
+                                  {"source_hash", source_hash()}};
     SceneCache scenes;
     std::optional<Observation> observation;
     Manifest manifest;

@@ -52,7 +52,7 @@ int dispatch(int argc, char** argv) {
         "avalanche-hazard: granular avalanche simulation (Savage-Hutter, Wang & Li 2017) "
         "and hazard maps"};
     app.name("avalanche-hazard");
-    app.set_version_flag("--version", software_version());
+    app.set_version_flag("--version", software_version() + " (sources " + source_hash() + ")");
     app.add_flag("-q,--quiet", global.quiet, "Only warnings and errors; no progress bar");
     app.add_flag("-v,--verbose", global.verbose, "Debug log lines");
     app.add_flag("--debug", global.debug, "Let errors escape as exceptions (for a stack trace)");

@@ -8,7 +8,9 @@ namespace avalanche::detail {
 Command add_version_command(CLI::App& app) {
     app.add_subcommand("version", "Print the version and exit");
     return [] {
-        std::cout << "avalanche-hazard " << software_version() << "\n";
+        // The version is the same for every commit; the source hash names the build.
+        std::cout << "avalanche-hazard " << software_version() << " (sources " << source_hash()
+                  << ")\n";
         return 0;
     };
 }

@@ -101,7 +101,8 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
         scene_fingerprint(scene.grid, scene.terrain, initial, scene.outside_data, scene.probes),
         options.checkpoint_interval,
         openmp_threads(),
-        software_version()};
+        software_version(),
+        source_hash()};
     if (resume && (resume->info.scene_fingerprint != checkpoint_info.scene_fingerprint ||
                    resume->nx != scene.grid.nx || resume->ny != scene.grid.ny))
         throw InputError(resume->path,

@@ -28,7 +28,8 @@ void write_report(const std::string& dir, const ProductInputs& in, const std::ve
         m << "> **INCOMPLETE**: the run was interrupted at t = " << fixed(st.simulated_time, 2)
           << " s; the maps cover only the flow up to then. Continue it with "
              "`avalanche-hazard run --resume` on this folder.\n\n";
-    m << "Software: avalanche-hazard " << software_version() << ". Configuration hash `" << in.config_hash
+    m << "Software: avalanche-hazard " << software_version() << " (sources `" << source_hash()
+      << "`). Configuration hash `" << in.config_hash
       << "`.\n\nCommand:\n\n```\n" << in.command_line << "\n```\n\n";
     m << "## What was simulated\n\n" << in.scene.description << ".\n\n";
     for (const auto& note : in.scene.input_notes) m << "- " << note << "\n";

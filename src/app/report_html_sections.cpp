@@ -172,8 +172,9 @@ std::string provenance_section(const nlohmann::json& summary) {
         s << "<p>No input files: the terrain and release are built from the scenario's "
              "parameters.</p>\n";
     }
-    s << "<p>Software: avalanche-hazard " << keyed(summary, "software_version")
-      << ". Command line (run it again from the same folder to reproduce these results):</p>\n"
+    s << "<p>Software: avalanche-hazard " << keyed(summary, "software_version") << " (sources "
+      << keyed(summary, "source_hash", "code")
+      << "). Command line (run it again from the same folder to reproduce these results):</p>\n"
       << keyed(summary, "command_line", "pre") << "</section>\n";
     return s.str();
 }

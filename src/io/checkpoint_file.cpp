@@ -23,7 +23,7 @@ using detail::write_attribute;
 namespace {
 
 constexpr const char* kFormat = "avalanche-hazard checkpoint";
-constexpr std::int64_t kFormatVersion = 2;  // 2: the solver regime (2026-12-02)
+constexpr std::int64_t kFormatVersion = 3;  // 2: the solver regime; 3: source_hash (2026-12-02)
 
 // ---------------------------------------------------------------- writing
 
@@ -60,6 +60,7 @@ void write_info(hid_t root, const CheckpointInfo& info, const Grid& grid, const 
     write_attribute(root, "format_version", kFormatVersion, path);
     write_attribute(root, "kind", kind, path);
     write_attribute(root, "software_version", software_version(), path);
+    write_attribute(root, "source_hash", source_hash(), path);
     write_attribute(root, "config_json", info.config.dump(), path);
     write_attribute(root, "config_hash", info.config_hash, path);
     write_attribute(root, "working_dir", info.working_dir, path);
@@ -276,6 +277,7 @@ CheckpointContents read_checkpoint(const std::string& path) {
     info.checkpoint_interval = r.real(root, "checkpoint_interval");
     info.threads = static_cast<int>(r.integer(root, "threads"));
     info.software_version = r.text(root, "software_version");
+    info.source_hash = r.text(root, "source_hash");
     c.nx = static_cast<int>(r.integer(root, "nx"));
     c.ny = static_cast<int>(r.integer(root, "ny"));
     c.ghosts = static_cast<int>(r.integer(root, "ghosts"));

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "avalanche/io/enum_names.hpp"
+#include "avalanche_source_hash.hpp"
 
 namespace avalanche {
 
@@ -107,5 +108,7 @@ std::string config_hash(const json& config) {
 }
 
 std::string software_version() { return AVALANCHE_VERSION; }
+
+std::string source_hash() { return AVALANCHE_SOURCE_HASH; }
 
 }  // namespace avalanche

@@ -136,6 +136,7 @@ ResultsWriter::ResultsWriter(std::string final_path, const Grid& grid, const Res
     write_attribute(root, "config_json", meta.config.dump(), f);
     write_attribute(root, "config_hash", meta.config_hash, f);
     write_attribute(root, "software_version", software_version(), f);
+    write_attribute(root, "source_hash", source_hash(), f);
 
     w.time = w.create_time();
     w.h = w.create_field("h", "m", "flow thickness normal to the bed");

@@ -9,6 +9,7 @@ nlohmann::json make_summary(const SummaryInputs& in) {
     const RunStatistics& st = in.stats;
     nlohmann::json s;
     s["software_version"] = software_version();
+    s["source_hash"] = source_hash();
     s["command_line"] = in.command_line;
     s["config_hash"] = in.config_hash;
     s["end_reason"] = to_string(st.end_reason);

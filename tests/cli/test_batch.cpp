@@ -5,9 +5,11 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "avalanche/app/cli.hpp"
 #include "avalanche/gis/raster_reader.hpp"
+#include "avalanche/io/effective_config.hpp"
 #include "batch_test_support.hpp"
 
 namespace avalanche {
@@ -144,6 +146,46 @@ TEST(Batch, ResumeRecomputesOnlyTheLostScenario) {
     // A changed base configuration invalidates every scenario (the hash differs).
     dir.write("base.toml",
               std::string(test::kCoarseParametricChute) + "\n[output]\nh_threshold = 0.02\n");
+    ASSERT_EQ(run_batch(args), 0);
+    EXPECT_NE(fs::last_write_time(out + "/delta=25/summary.json"), kept);
+}
+
+// The version number is the same for every commit: what tells an upgraded program from
+// the one that computed a scenario is the source hash in its summary and the manifest.
+TEST(Batch, ResumeRecomputesWhatAProgramBuiltFromOtherSourcesComputed) {
+    test::ScratchDir dir("batch-sources");
+    const auto base = dir.write("base.toml", test::kCoarseParametricChute);
+    const std::string out = dir.file("out");
+    const std::vector<std::string> args = {"--scenario",  base,    "--sweep",
+                                           "delta=25,30", "--out", out};
+    ASSERT_EQ(run_batch(args), 0);
+    auto manifest = test::read_json(out + "/manifest.json");
+    EXPECT_EQ(manifest["batch"]["source_hash"], source_hash());
+    for (const auto& s : manifest["scenarios"]) EXPECT_EQ(s["source_hash"], source_hash());
+    EXPECT_EQ(test::read_json(out + "/delta=25/summary.json")["source_hash"], source_hash());
+
+    // delta=30 as an older build left it: its summary and its manifest entry carry
+    // another source hash.
+    auto summary = test::read_json(out + "/delta=30/summary.json");
+    summary["source_hash"] = "0123456789abcdef";
+    std::ofstream(out + "/delta=30/summary.json") << summary.dump(2);
+    for (auto& s : manifest["scenarios"])
+        if (s["id"] == "delta=30") s["source_hash"] = "0123456789abcdef";
+    std::ofstream(out + "/manifest.json") << manifest.dump(2);
+    const auto kept = fs::last_write_time(out + "/delta=25/summary.json");
+
+    ASSERT_EQ(run_batch(args), 0);
+    EXPECT_EQ(fs::last_write_time(out + "/delta=25/summary.json"), kept);
+    EXPECT_EQ(test::read_json(out + "/delta=30/summary.json")["source_hash"], source_hash());
+    manifest = test::read_json(out + "/manifest.json");
+    for (const auto& s : manifest["scenarios"]) {
+        EXPECT_EQ(s["source_hash"], source_hash());
+        EXPECT_TRUE(s["complete"].get<bool>());
+    }
+
+    // A manifest written before the hash was recorded (no key): every scenario again.
+    for (auto& s : manifest["scenarios"]) s.erase("source_hash");
+    std::ofstream(out + "/manifest.json") << manifest.dump(2);
     ASSERT_EQ(run_batch(args), 0);
     EXPECT_NE(fs::last_write_time(out + "/delta=25/summary.json"), kept);
 }

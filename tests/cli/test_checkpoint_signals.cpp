@@ -1,7 +1,7 @@
 // Signals, refusals and numerical faults around checkpoints: SIGTERM writes a
 // checkpoint and products marked incomplete (exit 6) that --resume completes; --resume
-// refuses, with one line and exit 3, a folder without a checkpoint, a corrupt one, or
-// inputs that changed; a NaN writes diagnostic_checkpoint.h5 and no complete product.
+// refuses, with one line and exit 3, a folder without a checkpoint, a corrupt one,
+// inputs that changed, or a checkpoint written by a program built from other sources; a NaN writes diagnostic_checkpoint.h5 and no complete product.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -11,6 +11,7 @@
 #include <fstream>
 #include <thread>
 
+#include "avalanche/io/effective_config.hpp"
 #include "checkpoint_test_support.hpp"
 
 namespace avalanche {
@@ -139,6 +140,26 @@ TEST(CheckpointSignals, ResumeRefusesInputsThatChanged) {
     EXPECT_EQ(r.exit_code, 3);
     expect_one_error_line(
         r, out + "/checkpoint.h5: the inputs changed since the checkpoint was written");
+}
+
+TEST(CheckpointSignals, ResumeRefusesACheckpointOfAProgramBuiltFromOtherSources) {
+    ScratchDir dir("ckpt-sources");
+    const std::string file = dir.write("scenario.toml", test::kSmallChute);
+    const std::string out = dir.file("out");
+    ASSERT_EQ(test::run_binary(dir, "run -q --scenario '" + file + "' --out '" + out +
+                                        "' --checkpoint-interval 0.1")
+                  .exit_code,
+              0);
+    const std::string ckpt = out + "/checkpoint.h5";
+    // This program resumes its own checkpoint (the run above completed it; resuming a
+    // completed run reproduces it): the attribute it wrote is its own hash.
+    ASSERT_EQ(test::read_h5_string_attribute(ckpt, "source_hash"), source_hash());
+    test::replace_h5_string_attribute(ckpt, "source_hash", "0123456789abcdef");
+    const auto r = test::run_binary(dir, "run --resume '" + out + "'");
+    EXPECT_EQ(r.exit_code, 3);
+    expect_one_error_line(r, ckpt + ": was written by avalanche-hazard " + software_version() +
+                                 " built from sources 0123456789abcdef, this program's "
+                                 "sources are " + source_hash());
 }
 
 TEST(CheckpointSignals, ResumeTakesNoScenarioFlags) {

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "avalanche/io/effective_config.hpp"
 #include "cli_test_support.hpp"
 
 namespace avalanche {
@@ -159,9 +160,10 @@ TEST(CliExitCodes, VersionAndHelp) {
     ScratchDir dir("version");
     auto r = run_binary(dir, "version");
     EXPECT_EQ(r.exit_code, 0);
-    EXPECT_EQ(r.out.rfind("avalanche-hazard ", 0), 0u) << r.out;
+    EXPECT_EQ(r.out, "avalanche-hazard " + software_version() + " (sources " + source_hash() + ")\n");
     r = run_binary(dir, "--version");
     EXPECT_EQ(r.exit_code, 0);
+    EXPECT_NE(r.out.find(source_hash()), std::string::npos) << r.out;
     r = run_binary(dir, "run --help");
     EXPECT_EQ(r.exit_code, 0);
     for (const char* s : {"--scenario",

@@ -198,6 +198,7 @@ TEST_F(HtmlReport, EveryMarkedNumberEqualsTheSummary) {
                             "simulated_time_s",
                             "performance.cell_updates_per_s",
                             "software_version",
+                            "source_hash",
                             "config_hash",
                             "command_line",
                             "parameters.material.delta_deg",

@@ -39,7 +39,7 @@ TEST(RunInProcess, SummaryHasEveryKeyAndAnExactMassBalance) {
     const auto s = read_json(out + "/summary.json");
     for (const char* key :
          {"end_reason", "simulated_time_s", "steps", "wall_s", "performance", "volume",
-          "parameters", "config_hash", "software_version", "command_line", "h_min_m"})
+          "parameters", "config_hash", "software_version", "source_hash", "command_line", "h_min_m"})
         EXPECT_TRUE(s.contains(key)) << key;
     for (const char* key : {"cell_updates", "cell_updates_per_s", "threads"})
         EXPECT_TRUE(s["performance"].contains(key)) << key;

@@ -79,4 +79,25 @@ inline std::string read_h5_string_attribute(const std::string& file, const std::
     return out;
 }
 
+// Replaces the root string attribute `name` of `file` (to stand for a file another
+// program wrote).
+inline void replace_h5_string_attribute(const std::string& file, const std::string& name,
+                                        const std::string& value) {
+    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    if (f < 0) throw std::runtime_error("cannot open " + file);
+    if (H5Aexists(f, name.c_str()) > 0) H5Adelete(f, name.c_str());
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, H5T_VARIABLE);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t a = H5Acreate2(f, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+    const char* text = value.c_str();
+    const herr_t written = a < 0 ? -1 : H5Awrite(a, type, &text);
+    if (a >= 0) H5Aclose(a);
+    H5Sclose(space);
+    H5Tclose(type);
+    H5Fclose(f);
+    if (written < 0) throw std::runtime_error("cannot write the attribute " + name);
+}
+
 }  // namespace avalanche::test

@@ -75,7 +75,7 @@ struct Observers {
 };
 
 CheckpointInfo info_of(const Scene& s, double interval) {
-    return {s.meta.config, s.meta.config_hash, "/", "fingerprint", interval, 1, "test"};
+    return {s.meta.config, s.meta.config_hash, "/", "fingerprint", interval, 1, "test", "test"};
 }
 
 TEST(CheckpointRoundTrip, ResumedObserversEndExactlyAsTheUninterruptedRun) {

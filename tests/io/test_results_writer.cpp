@@ -151,6 +151,7 @@ TEST(ResultsWriter, RootAttributesDescribeTheRun) {
     EXPECT_EQ(test::read_h5_string_attribute(r.path, "earth_pressure"), "savage-hutter");
     EXPECT_EQ(test::read_h5_string_attribute(r.path, "release.shape"), "box");
     EXPECT_EQ(test::read_h5_string_attribute(r.path, "software_version"), software_version());
+    EXPECT_EQ(test::read_h5_string_attribute(r.path, "source_hash"), source_hash());
     const auto hash = test::read_h5_string_attribute(r.path, "config_hash");
     EXPECT_EQ(hash, config_hash(effective_config(r.scenario)));
     EXPECT_EQ(hash.size(), 16u);

@@ -1,17 +1,41 @@
 // summary.json and the effective configuration with its hash.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/io/atomic_file.hpp"
 #include "avalanche/io/effective_config.hpp"
+#include "avalanche/io/sha256.hpp"
 #include "avalanche/io/summary_writer.hpp"
 #include "io_test_support.hpp"
 
 namespace avalanche {
 namespace {
+
+// The hash the build wrote (cmake/source_hash.cmake) derived again here from the files:
+// every .cpp and .hpp under src/ and include/, sorted by path, one line "path sha256"
+// each, hashed; a stale generated header (a build that missed a change) fails it.
+TEST(SourceHash, IsTheSha256OfTheListingOfTheSourcesThisTestWasBuiltFrom) {
+    namespace fs = std::filesystem;
+    const fs::path root = AVALANCHE_SOURCE_DIR;
+    std::vector<std::string> files;
+    for (const char* dir : {"src", "include"})
+        for (const auto& e : fs::recursive_directory_iterator(root / dir)) {
+            const auto ext = e.path().extension();
+            if (e.is_regular_file() && (ext == ".cpp" || ext == ".hpp"))
+                files.push_back(e.path().string());
+        }
+    std::sort(files.begin(), files.end());
+    ASSERT_GT(files.size(), 100u);
+    std::string listing;
+    for (const auto& f : files)
+        listing += fs::relative(f, root).string() + " " + sha256_file_hex(f) + "\n";
+    EXPECT_EQ(source_hash(), sha256_hex(listing).substr(0, 16));
+}
 
 TEST(EffectiveConfig, HoldsEveryParameterAndItsHashFollowsThem) {
     Scenario s;
@@ -70,6 +94,7 @@ TEST(Summary, HasEveryDocumentedKeyFromTheRunStatistics) {
     EXPECT_EQ(j["parameters"], in.config);
     EXPECT_EQ(j["config_hash"], in.config_hash);
     EXPECT_EQ(j["software_version"], software_version());
+    EXPECT_EQ(j["source_hash"], source_hash());
     EXPECT_EQ(j["command_line"], in.command_line);
     EXPECT_EQ(j["h_min_m"], 2.5e-5);
 }

@@ -1,8 +1,9 @@
 #pragma once
 // DIR/manifest.json of a batch (docs/batch.md): per scenario its id, parameters, the
-// hash of its effective configuration and whether its outputs are complete. A restarted
-// batch skips a scenario only when the manifest AND its summary.json agree that it is
-// complete with the same configuration hash.
+// hash of its effective configuration, the source hash of the program that computed it
+// and whether its outputs are complete. A restarted batch skips a scenario only when the
+// manifest AND its summary.json agree that it is complete with the same configuration
+// hash and the same source hash (the version number is the same for every commit).
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,6 +13,7 @@ namespace avalanche {
 struct ManifestEntry {
     nlohmann::json parameters = nlohmann::json::object();  // {"delta_deg": 12.5, ...}
     std::string config_hash;
+    std::string source_hash;  // "" in manifests written before it was recorded
     bool complete = false;
     std::string error;  // why the last attempt failed, "" if it did not
 };
@@ -25,9 +27,10 @@ Manifest read_manifest(const std::string& path);
 // leaves the previous manifest. `batch` describes the batch (base scenario, sweeps).
 void write_manifest(const std::string& path, const Manifest& manifest, const nlohmann::json& batch);
 
-// Whether `scenario_dir` holds a finished run of configuration `config_hash`: its
-// summary.json exists (written last, so every product exists), carries that hash and
-// was not interrupted.
-bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash);
+// Whether `scenario_dir` holds a finished run of configuration `config_hash` computed
+// from sources `source_hash`: its summary.json exists (written last, so every product
+// exists), carries both hashes and was not interrupted.
+bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash,
+                      const std::string& source_hash);
 
 }  // namespace avalanche

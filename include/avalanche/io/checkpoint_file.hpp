@@ -31,6 +31,7 @@ struct CheckpointInfo {
     double checkpoint_interval = 0.0;  // s; 0 = only when interrupted
     int threads = 1;
     std::string software_version;
+    std::string source_hash;  // of the program that wrote it (effective_config.hpp)
 };
 
 struct CheckpointContents {

@@ -20,4 +20,9 @@ std::string config_hash(const nlohmann::json& config);
 // The software version written into outputs (the CMake project version).
 std::string software_version();
 
+// 16 hex digits of a SHA-256 over the program's C++ sources (cmake/source_hash.cmake),
+// written into outputs beside the version, which is the same for every commit: a batch
+// or checkpoint resumes only results computed from the same sources.
+std::string source_hash();
+
 }  // namespace avalanche
