@@ -38,13 +38,16 @@ inline constexpr const char* kPresetsNote = R"(
 The presets (`--quality`, include/avalanche/app/quality_preset.hpp) are stated above on
 the chute with a 0.5 m base cell: `draft` doubles the cell size and the Courant number
 and advects once per step (SLS), `standard` is the default (the paper's scheme and
-Courant number 0.2, L S L), `fine` halves the cell size at Courant 0.4 with SLS. On the
-chute, draft costs well under a tenth of standard (0.06-0.07 in the last three runs of
-the study: the CPU times of these short runs are noisy) for 1.2x its deposit error
-(runout within a cell of 1 m); fine costs 1.5-1.9x for 0.6x the deposit error and a
-quarter of its runout error.
+Courant number 0.2, L S L), `fine` halves the cell size at Courant 0.2 with SLS. On the
+chute, draft costs well under a tenth of standard (0.06-0.07 in the last runs of the
+study: the CPU times of these short runs are noisy) for 1.2x its deposit error (runout
+within a cell of 1 m); fine costs about 3x for 0.7x the deposit error and about half its
+runout error. Until 2026-12-02 fine used Courant 0.4 (SLS C=0.4 at 0.25 m in the
+table: 1.5-1.9x the cost for 0.6x the error); on the field scene (next section), whose
+deposit is two to four times deeper than the fine preset's cells, that left the deposit
+moving and its map farther from the reference than Courant 0.2.
 
-Why SLS at Courant 0.4: L S L advects twice per step, each time over half the step, so
+Why SLS, and at Courant 0.4 for the draft: L S L advects twice per step, each time over half the step, so
 at Courant C every advection runs at Courant C/2; SLS at Courant 0.2 repeats L S L at
 0.4 almost exactly (the same advections, the sources split differently: compare their
 rows), and SLS at 0.4 advects at an advection Courant number of 0.4, which L S L cannot
@@ -66,7 +69,7 @@ not understood yet. The reference itself still moves with the cell size (runout
 before the regime's rest speed of 2026-12-02, third session). Since
 2026-12-02 a cell whose compression nothing confirms keeps its Savage-Hutter regime
 (docs/verification.md, finding 2): the chute's errors here fell by about a fifth with
-it (standard 0.143 -> 0.116, draft 0.164 -> 0.142, fine 0.088 -> 0.069); they are still
+it (standard 0.143 -> 0.116, draft 0.164 -> 0.142, fine at Courant 0.4 0.088 -> 0.069); they are still
 nearly twice those of the first regime rule (the central difference alone, standard
 0.063), which let patterns of passive cells grow in spreading flows. The chute's
 deposit error also moves by several per cent with round-off (docs/numerics.md,
@@ -82,8 +85,9 @@ finer than its depth need not come to rest with SLS at Courant 0.4: on this chut
 0.4 m/s (docs/numerics.md, advection step 2); at 0.125 m it did too (for 40 s and more,
 relative L1 error 0.31) before the regime's rest speed (2026-12-02, third session), and now stops
 at 7 s, 0.019 from the reference (runout 50.44 m against 50.41 m). L S L at Courant
-0.2 stops at both. A run's `final_kinetic_energy_fraction` (summary.json) shows whether
-its deposit came to rest. The cell-size factor applies to
+0.2 stops at both. On the field scene the same happens on 10 m cells, which is why the
+fine preset advects at Courant 0.2 (next section). A run's
+`final_kinetic_energy_fraction` (summary.json) shows whether its deposit came to rest. The cell-size factor applies to
 the scene's cell size (`numerics.cell_size`, or the DEM's resolution when automatic);
 explicit `--scheme`, `--limiter`, `--cfl` and `--cell-size` flags win over the preset.
 )";

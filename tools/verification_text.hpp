@@ -196,7 +196,7 @@ inline constexpr const char* kFindingsText = R"(
    cells (h ~ 1e-5 to 1e-2 m over ~20 cells) feel too small a pressure gradient, move
    faster than the body behind which they trail (2.01 against 1.80 m/s at t = 1 s) and
    compress into it, a compression by the model's own rule. **Deposits** (2026-12-02,
-   third session): with one advection per step at Courant 0.4 (S L S, the draft and
+   third session): with one advection per step at Courant 0.4 (S L S, then the setting of the draft and
    fine presets) the parametric chute's deposit on 0.125 m cells never came to rest:
    velocities of the size of the friction impulse the splitting leaves in a deposit
    decided each cell's regime, neighbours in opposite regimes pushed each other harder
