@@ -79,7 +79,8 @@ void run(Run& r, const std::string& scenario, const std::string& work) {
         const nlohmann::json j = read_json(summary);
         std::string was;
         std::getline(std::ifstream(stamp), was);
-        if (j.value("complete", false) && j.value("source_hash", "") == source_hash() && was == line) {
+        if (j.value("complete", false) && j.value("source_hash", "") == source_hash() &&
+            was == line) {
             r.summary = j;
             r.reused = true;
             std::cerr << "reusing " << r.dir << "\n";
@@ -105,7 +106,8 @@ double map_error(const std::string& map, const std::string& ref_map) {
     const int k = static_cast<int>(std::lround(ga.dx / gr.dx));
     const int oi = static_cast<int>(std::lround((ga.x0 - gr.x0) / gr.dx));
     const int oj = static_cast<int>(std::lround((ga.y0 - gr.y0) / gr.dy));
-    if (k < 1 || std::abs(k * gr.dx - ga.dx) > 1e-6 * ga.dx || std::abs(oi * gr.dx - (ga.x0 - gr.x0)) > 1e-6 * gr.dx ||
+    if (k < 1 || std::abs(k * gr.dx - ga.dx) > 1e-6 * ga.dx ||
+        std::abs(oi * gr.dx - (ga.x0 - gr.x0)) > 1e-6 * gr.dx ||
         std::abs(oj * gr.dy - (ga.y0 - gr.y0)) > 1e-6 * gr.dy)
         throw InputError(map, "its grid is not made of whole blocks of the reference's cells");
     const auto value = [](const gis::RasterData& d, std::size_t n) {
@@ -154,7 +156,8 @@ std::vector<double> last_snapshot(const std::string& file, const char* name) {
 // and their number: how still the deposit is (a deposit that "boils" keeps its cells
 // moving against each other).
 std::pair<double, long> deep_rms_speed(const std::string& results, double deep) {
-    const auto h = last_snapshot(results, "h"), u = last_snapshot(results, "u"), v = last_snapshot(results, "v");
+    const auto h = last_snapshot(results, "h"), u = last_snapshot(results, "u"),
+               v = last_snapshot(results, "v");
     double sum = 0.0;
     long n = 0;
     for (std::size_t c = 0; c < h.size(); ++c)
@@ -188,8 +191,10 @@ int main(int argc, char** argv) {
     std::string work = src + "/../field-presets-work";
     for (int k = 1; k < argc; ++k) {
         const std::string a = argv[k];
-        if (a == "--doc" && k + 1 < argc) doc = argv[++k];
-        else if (a == "--work" && k + 1 < argc) work = argv[++k];
+        if (a == "--doc" && k + 1 < argc)
+            doc = argv[++k];
+        else if (a == "--work" && k + 1 < argc)
+            work = argv[++k];
         else {
             std::cerr << "usage: field_presets_study [--doc FILE] [--work DIR]\n";
             return 2;
@@ -211,8 +216,10 @@ int main(int argc, char** argv) {
         run(ref, scenario, work);
         for (Run& r : runs) run(r, scenario, work);
 
-        const std::string labels[] = {"`--quality draft`", "`--quality standard` (the scenario)",
-                                      "`--quality fine`", "`--quality fine --cfl 0.3`",
+        const std::string labels[] = {"`--quality draft`",
+                                      "`--quality standard` (the scenario)",
+                                      "`--quality fine`",
+                                      "`--quality fine --cfl 0.3`",
                                       "`--quality fine --cfl 0.4` (fine until 2026-12-02)",
                                       "`--cell-size 10` (standard numerics)"};
         std::ostringstream md;
@@ -223,28 +230,33 @@ int main(int argc, char** argv) {
            << ref.summary.at("end_reason").get<std::string>() << " at "
            << fmt("%.0f", ref.summary.at("simulated_time_s").get<double>()) << " s, runout "
            << fmt("%.0f", ref.summary.at("runout").at("runout_length_m").get<double>())
-           << " m, affected area " << fmt("%.3f", ref.summary.at("runout").at("affected_area_m2").get<double>() / 1e6)
+           << " m, affected area "
+           << fmt("%.3f", ref.summary.at("runout").at("affected_area_m2").get<double>() / 1e6)
            << " km², cells deeper than 1 m at the end moving at " << fmt("%.2f", ref_rms.first)
            << " m/s (root mean square over " << ref_rms.second << " cells).\n\n"
-           << "| run | cell (m) | splitting | Courant | cell updates | CPU (s) | deposit error | max depth error | max speed error | runout (m) | affected area (km²) | end | final kinetic energy / max | deep cells' rms speed (m/s) |\n"
+           << "| run | cell (m) | splitting | Courant | cell updates | CPU (s) | deposit error | "
+              "max depth error | max speed error | runout (m) | affected area (km²) | end | final "
+              "kinetic energy / max | deep cells' rms speed (m/s) |\n"
            << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
         struct Metrics {
             double deposit, depth, speed, rms;
         };
         std::vector<Metrics> m;
         for (const Run& r : runs)
-            m.push_back({map_error(r.dir + "/deposit_thickness.tif", ref.dir + "/deposit_thickness.tif"),
-                         map_error(r.dir + "/max_depth.tif", ref.dir + "/max_depth.tif"),
-                         map_error(r.dir + "/max_velocity.tif", ref.dir + "/max_velocity.tif"),
-                         deep_rms_speed(r.dir + "/results.h5", 1.0).first});
+            m.push_back(
+                {map_error(r.dir + "/deposit_thickness.tif", ref.dir + "/deposit_thickness.tif"),
+                 map_error(r.dir + "/max_depth.tif", ref.dir + "/max_depth.tif"),
+                 map_error(r.dir + "/max_velocity.tif", ref.dir + "/max_velocity.tif"),
+                 deep_rms_speed(r.dir + "/results.h5", 1.0).first});
         for (std::size_t k = 0; k < runs.size(); ++k) {
             const Run& r = runs[k];
             const auto& s = r.summary;
             const double cpu = r.reused ? std::nan("") : r.cpu_s;
-            md << "| " << labels[k] << " | " << fmt("%g", s.at("grid").at("dx_m").get<double>()) << " | "
-               << r.splitting << " | " << fmt("%g", r.cfl) << " | "
+            md << "| " << labels[k] << " | " << fmt("%g", s.at("grid").at("dx_m").get<double>())
+               << " | " << r.splitting << " | " << fmt("%g", r.cfl) << " | "
                << fmt("%.1f M", s.at("performance").at("cell_updates").get<double>() / 1e6) << " | "
-               << (std::isfinite(cpu) ? fmt("%.1f", cpu) : fmt("(%.1f wall)", s.at("wall_s").get<double>()))
+               << (std::isfinite(cpu) ? fmt("%.1f", cpu)
+                                      : fmt("(%.1f wall)", s.at("wall_s").get<double>()))
                << " | " << fmt("%.3f", m[k].deposit) << " | " << fmt("%.3f", m[k].depth) << " | "
                << fmt("%.3f", m[k].speed) << " | "
                << fmt("%.0f", s.at("runout").at("runout_length_m").get<double>()) << " | "
@@ -254,17 +266,22 @@ int main(int argc, char** argv) {
                << fmt("%.2f", m[k].rms) << " |\n";
         }
         // runs: 0 draft, 1 standard, 2 fine, 3 fine at 0.3, 4 fine at 0.4, 5 standard on 10 m.
-        const auto cpu_of = [&](const Run& r) { return r.reused ? r.summary.at("wall_s").get<double>() : r.cpu_s; };
-        md << "\nOn the fine preset's 10 m cells the deposit's deep cells move at " << fmt("%.2f", m[2].rms)
-           << " m/s with the fine preset (Courant 0.2), " << fmt("%.2f", m[3].rms) << " at Courant 0.3, "
-           << fmt("%.2f", m[4].rms) << " at Courant 0.4 and " << fmt("%.2f", m[5].rms)
+        const auto cpu_of = [&](const Run& r) {
+            return r.reused ? r.summary.at("wall_s").get<double>() : r.cpu_s;
+        };
+        md << "\nOn the fine preset's 10 m cells the deposit's deep cells move at "
+           << fmt("%.2f", m[2].rms) << " m/s with the fine preset (Courant 0.2), "
+           << fmt("%.2f", m[3].rms) << " at Courant 0.3, " << fmt("%.2f", m[4].rms)
+           << " at Courant 0.4 and " << fmt("%.2f", m[5].rms)
            << " with the standard numerics (the reference: " << fmt("%.2f", ref_rms.first)
-           << "); the deposit maps lie " << fmt("%.3f", m[2].deposit) << ", " << fmt("%.3f", m[3].deposit) << ", "
-           << fmt("%.3f", m[4].deposit) << " and " << fmt("%.3f", m[5].deposit)
-           << " from the reference. The fine preset costs " << fmt("%.1f", cpu_of(runs[2]) / cpu_of(runs[1]))
-           << " times the standard preset's CPU time (Courant 0.4: " << fmt("%.1f", cpu_of(runs[4]) / cpu_of(runs[1]))
-           << " times; the standard numerics on the same cells: " << fmt("%.1f", cpu_of(runs[5]) / cpu_of(runs[1]))
-           << " times).\n";
+           << "); the deposit maps lie " << fmt("%.3f", m[2].deposit) << ", "
+           << fmt("%.3f", m[3].deposit) << ", " << fmt("%.3f", m[4].deposit) << " and "
+           << fmt("%.3f", m[5].deposit) << " from the reference. The fine preset costs "
+           << fmt("%.1f", cpu_of(runs[2]) / cpu_of(runs[1]))
+           << " times the standard preset's CPU time (Courant 0.4: "
+           << fmt("%.1f", cpu_of(runs[4]) / cpu_of(runs[1]))
+           << " times; the standard numerics on the same cells: "
+           << fmt("%.1f", cpu_of(runs[5]) / cpu_of(runs[1])) << " times).\n";
         md << field_presets_text::kDiscussion;
         splice(doc, md.str());
         std::cerr << "wrote " << doc << "\n";

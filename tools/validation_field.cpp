@@ -22,9 +22,9 @@
 
 #include "avalanche/app/cli.hpp"
 #include "avalanche/core/error.hpp"
-#include "avalanche/io/effective_config.hpp"
 #include "avalanche/gis/quicklook.hpp"
 #include "avalanche/gis/raster_reader.hpp"
+#include "avalanche/io/effective_config.hpp"
 #include "validation_study.hpp"
 #include "validation_text.hpp"
 

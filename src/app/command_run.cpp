@@ -185,12 +185,12 @@ int execute_resume(const std::string& dir, int threads, const GlobalOptions& glo
                                               checkpoint.info.config_hash + " (corrupt checkpoint?)");
     // The version is the same for every commit; the source hash tells two builds apart.
     if (checkpoint.info.source_hash != source_hash())
-        throw InputError(checkpoint.path, "was written by avalanche-hazard " +
-                                              checkpoint.info.software_version + " built from sources " +
-                                              checkpoint.info.source_hash + ", this program's sources are " +
-                                              source_hash() +
-                                              "; resuming would mix two solvers in one run: start it "
-                                              "again with --overwrite");
+        throw InputError(checkpoint.path,
+                         "was written by avalanche-hazard " + checkpoint.info.software_version +
+                             " built from sources " + checkpoint.info.source_hash +
+                             ", this program's sources are " + source_hash() +
+                             "; resuming would mix two solvers in one run: start it "
+                             "again with --overwrite");
     set_threads(threads > 0 ? threads : checkpoint.info.threads);
     return run_scene(prepare_scene(scenario), scenario, out, global,
                      checkpoint.info.checkpoint_interval, &checkpoint);

@@ -29,8 +29,8 @@ void write_report(const std::string& dir, const ProductInputs& in, const std::ve
           << " s; the maps cover only the flow up to then. Continue it with "
              "`avalanche-hazard run --resume` on this folder.\n\n";
     m << "Software: avalanche-hazard " << software_version() << " (sources `" << source_hash()
-      << "`). Configuration hash `" << in.config_hash
-      << "`.\n\nCommand:\n\n```\n" << in.command_line << "\n```\n\n";
+      << "`). Configuration hash `" << in.config_hash << "`.\n\nCommand:\n\n```\n"
+      << in.command_line << "\n```\n\n";
     m << "## What was simulated\n\n" << in.scene.description << ".\n\n";
     for (const auto& note : in.scene.input_notes) m << "- " << note << "\n";
     m << "\nMaterial: internal friction angle " << in.scenario.material.phi_deg << " deg, bed friction angle "

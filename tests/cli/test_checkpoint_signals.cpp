@@ -1,7 +1,8 @@
 // Signals, refusals and numerical faults around checkpoints: SIGTERM writes a
 // checkpoint and products marked incomplete (exit 6) that --resume completes; --resume
 // refuses, with one line and exit 3, a folder without a checkpoint, a corrupt one,
-// inputs that changed, or a checkpoint written by a program built from other sources; a NaN writes diagnostic_checkpoint.h5 and no complete product.
+// inputs that changed, or a checkpoint written by a program built from other sources;
+// a NaN writes diagnostic_checkpoint.h5 and no complete product.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -36,6 +37,15 @@ void expect_one_error_line(const test::ProcessResult& r, const std::string& need
     ASSERT_EQ(lines.size(), 1u) << r.err;
     EXPECT_EQ(lines[0].rfind("avalanche-hazard: error: ", 0), 0u) << lines[0];
     EXPECT_NE(lines[0].find(needle), std::string::npos) << lines[0];
+}
+
+// The small chute run to its end with a checkpoint every 0.1 s into `out` (the last one
+// stays); the exit code.
+int run_small_chute_with_checkpoints(const ScratchDir& dir, const std::string& out) {
+    const std::string file = dir.write("scenario.toml", test::kSmallChute);
+    return test::run_binary(dir, "run -q --scenario '" + file + "' --out '" + out +
+                                     "' --checkpoint-interval 0.1")
+        .exit_code;
 }
 
 TEST(CheckpointSignals, SigtermMarksProductsIncompleteAndResumeCompletesThem) {
@@ -98,12 +108,8 @@ TEST(CheckpointSignals, ResumeWithoutACheckpointIsAnInputError) {
 
 TEST(CheckpointSignals, CorruptOrTruncatedCheckpointIsAnInputError) {
     ScratchDir dir("ckpt-corrupt");
-    const std::string file = dir.write("scenario.toml", test::kSmallChute);
     const std::string out = dir.file("out");
-    ASSERT_EQ(test::run_binary(dir, "run -q --scenario '" + file + "' --out '" + out +
-                                        "' --checkpoint-interval 0.1")
-                  .exit_code,
-              0);
+    ASSERT_EQ(run_small_chute_with_checkpoints(dir, out), 0);
     const std::string ckpt = out + "/checkpoint.h5";
     const auto size = std::filesystem::file_size(ckpt);
     std::filesystem::copy_file(ckpt, dir.file("good.h5"));
@@ -144,12 +150,8 @@ TEST(CheckpointSignals, ResumeRefusesInputsThatChanged) {
 
 TEST(CheckpointSignals, ResumeRefusesACheckpointOfAProgramBuiltFromOtherSources) {
     ScratchDir dir("ckpt-sources");
-    const std::string file = dir.write("scenario.toml", test::kSmallChute);
     const std::string out = dir.file("out");
-    ASSERT_EQ(test::run_binary(dir, "run -q --scenario '" + file + "' --out '" + out +
-                                        "' --checkpoint-interval 0.1")
-                  .exit_code,
-              0);
+    ASSERT_EQ(run_small_chute_with_checkpoints(dir, out), 0);
     const std::string ckpt = out + "/checkpoint.h5";
     // This program resumes its own checkpoint (the run above completed it; resuming a
     // completed run reproduces it): the attribute it wrote is its own hash.
@@ -159,7 +161,8 @@ TEST(CheckpointSignals, ResumeRefusesACheckpointOfAProgramBuiltFromOtherSources)
     EXPECT_EQ(r.exit_code, 3);
     expect_one_error_line(r, ckpt + ": was written by avalanche-hazard " + software_version() +
                                  " built from sources 0123456789abcdef, this program's "
-                                 "sources are " + source_hash());
+                                 "sources are " +
+                                 source_hash());
 }
 
 TEST(CheckpointSignals, ResumeTakesNoScenarioFlags) {

@@ -160,7 +160,8 @@ TEST(CliExitCodes, VersionAndHelp) {
     ScratchDir dir("version");
     auto r = run_binary(dir, "version");
     EXPECT_EQ(r.exit_code, 0);
-    EXPECT_EQ(r.out, "avalanche-hazard " + software_version() + " (sources " + source_hash() + ")\n");
+    EXPECT_EQ(r.out,
+              "avalanche-hazard " + software_version() + " (sources " + source_hash() + ")\n");
     r = run_binary(dir, "--version");
     EXPECT_EQ(r.exit_code, 0);
     EXPECT_NE(r.out.find(source_hash()), std::string::npos) << r.out;

@@ -37,9 +37,9 @@ TEST(RunInProcess, SummaryHasEveryKeyAndAnExactMassBalance) {
     ASSERT_EQ(run_cli({"avalanche-hazard", "run", "--scenario", scenario, "--out", out, "--quiet"}),
               0);
     const auto s = read_json(out + "/summary.json");
-    for (const char* key :
-         {"end_reason", "simulated_time_s", "steps", "wall_s", "performance", "volume",
-          "parameters", "config_hash", "software_version", "source_hash", "command_line", "h_min_m"})
+    for (const char* key : {"end_reason", "simulated_time_s", "steps", "wall_s", "performance",
+                            "volume", "parameters", "config_hash", "software_version",
+                            "source_hash", "command_line", "h_min_m"})
         EXPECT_TRUE(s.contains(key)) << key;
     for (const char* key : {"cell_updates", "cell_updates_per_s", "threads"})
         EXPECT_TRUE(s["performance"].contains(key)) << key;

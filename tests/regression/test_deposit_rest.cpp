@@ -1,6 +1,6 @@
 // A deposit must come to rest. With one advection per step (S L S) at Courant 0.4, the
-// setting of the draft preset (and of the fine preset until 2026-12-02), the deposit of this chute (the parametric
-// chute's geometry, 60 m long) on 0.125 m cells kept moving at up to 0.4 m/s, cell
+// setting of the draft preset (and of the fine preset until 2026-12-02), the deposit of this chute
+// (the parametric chute's geometry, 60 m long) on 0.125 m cells kept moving at up to 0.4 m/s, cell
 // against cell, until 46 s (it stops at 7 s on 0.25 m cells and at Courant 0.3):
 // velocities of the size of the friction impulse the splitting leaves in a deposit
 // decided the Savage-Hutter regime of each cell, and the pressures of neighbouring cells

@@ -47,7 +47,8 @@ TEST(FieldDeposit, FinePresetLeavesTheRockAvalancheDepositStill) {
     PreparedScene scene = prepare_scene(s);
     ASSERT_DOUBLE_EQ(scene.grid.dx, 10.0);  // the scenario's 20 m, halved
     const double h_min = effective_h_min(s.numerics, scene.initial, scene.terrain);
-    Simulation sim(scene.grid, scene.terrain, s.material, s.numerics, std::move(scene.initial), h_min);
+    Simulation sim(scene.grid, scene.terrain, s.material, s.numerics, std::move(scene.initial),
+                   h_min);
     if (!scene.outside_data.empty()) sim.set_sink_cells(scene.outside_data);
     const RunStatistics st = sim.run();
     const auto [rms, deep_cells] = deep_rms_speed(sim.state(), scene.grid, 1.0);
