@@ -29,24 +29,17 @@
 #include "avalanche/app/cli.hpp"
 #include "avalanche/core/error.hpp"
 #include "avalanche/gis/raster_reader.hpp"
+#include "avalanche/io/atomic_file.hpp"
 #include "avalanche/io/effective_config.hpp"
 #include "field_presets_text.hpp"
+#include "study_support.hpp"
 
 using namespace avalanche;
 
 namespace {
 
-std::string fmt(const char* f, double x) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, x);
-    return buf;
-}
-
-nlohmann::json read_json(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path, "cannot be read");
-    return nlohmann::json::parse(in);
-}
+using study::fmt;
+using study::read_json;
 
 // One run of the study: its name in the table, the flags after the scenario, and what
 // it produced.
@@ -60,6 +53,10 @@ struct Run {
     nlohmann::json summary;
     double cpu_s = std::nan("");  // measured when computed here
     bool reused = false;
+    // The run's cost: its CPU time, or its summary's wall time when it was reused.
+    [[nodiscard]] double seconds() const {
+        return reused ? summary.at("wall_s").get<double>() : cpu_s;
+    }
 };
 
 // Runs `avalanche-hazard run --scenario S FLAGS --threads 1 --out DIR`, or reuses DIR
@@ -168,21 +165,6 @@ std::pair<double, long> deep_rms_speed(const std::string& results, double deep) 
     return {n ? std::sqrt(sum / static_cast<double>(n)) : 0.0, n};
 }
 
-// Replaces the text between the markers of the doc.
-void splice(const std::string& doc, const std::string& body) {
-    const std::string begin = "<!-- field-presets:begin -->", end = "<!-- field-presets:end -->";
-    std::stringstream ss;
-    ss << std::ifstream(doc).rdbuf();
-    std::string text = ss.str();
-    const auto a = text.find(begin), b = text.find(end);
-    if (a == std::string::npos || b == std::string::npos || b < a)
-        throw InputError(doc, "has no " + begin + " ... " + end + " block to replace");
-    text.replace(a, b + end.size() - a, begin + "\n" + body + end);
-    const std::string tmp = doc + ".part";
-    std::ofstream(tmp) << text;
-    std::filesystem::rename(tmp, doc);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -251,13 +233,11 @@ int main(int argc, char** argv) {
         for (std::size_t k = 0; k < runs.size(); ++k) {
             const Run& r = runs[k];
             const auto& s = r.summary;
-            const double cpu = r.reused ? std::nan("") : r.cpu_s;
             md << "| " << labels[k] << " | " << fmt("%g", s.at("grid").at("dx_m").get<double>())
                << " | " << r.splitting << " | " << fmt("%g", r.cfl) << " | "
                << fmt("%.1f M", s.at("performance").at("cell_updates").get<double>() / 1e6) << " | "
-               << (std::isfinite(cpu) ? fmt("%.1f", cpu)
-                                      : fmt("(%.1f wall)", s.at("wall_s").get<double>()))
-               << " | " << fmt("%.3f", m[k].deposit) << " | " << fmt("%.3f", m[k].depth) << " | "
+               << fmt(r.reused ? "(%.1f wall)" : "%.1f", r.seconds()) << " | "
+               << fmt("%.3f", m[k].deposit) << " | " << fmt("%.3f", m[k].depth) << " | "
                << fmt("%.3f", m[k].speed) << " | "
                << fmt("%.0f", s.at("runout").at("runout_length_m").get<double>()) << " | "
                << fmt("%.3f", s.at("runout").at("affected_area_m2").get<double>() / 1e6) << " | "
@@ -266,9 +246,6 @@ int main(int argc, char** argv) {
                << fmt("%.2f", m[k].rms) << " |\n";
         }
         // runs: 0 draft, 1 standard, 2 fine, 3 fine at 0.3, 4 fine at 0.4, 5 standard on 10 m.
-        const auto cpu_of = [&](const Run& r) {
-            return r.reused ? r.summary.at("wall_s").get<double>() : r.cpu_s;
-        };
         md << "\nOn the fine preset's 10 m cells the deposit's deep cells move at "
            << fmt("%.2f", m[2].rms) << " m/s with the fine preset (Courant 0.2), "
            << fmt("%.2f", m[3].rms) << " at Courant 0.3, " << fmt("%.2f", m[4].rms)
@@ -277,13 +254,14 @@ int main(int argc, char** argv) {
            << "); the deposit maps lie " << fmt("%.3f", m[2].deposit) << ", "
            << fmt("%.3f", m[3].deposit) << ", " << fmt("%.3f", m[4].deposit) << " and "
            << fmt("%.3f", m[5].deposit) << " from the reference. The fine preset costs "
-           << fmt("%.1f", cpu_of(runs[2]) / cpu_of(runs[1]))
+           << fmt("%.1f", runs[2].seconds() / runs[1].seconds())
            << " times the standard preset's CPU time (Courant 0.4: "
-           << fmt("%.1f", cpu_of(runs[4]) / cpu_of(runs[1]))
+           << fmt("%.1f", runs[4].seconds() / runs[1].seconds())
            << " times; the standard numerics on the same cells: "
-           << fmt("%.1f", cpu_of(runs[5]) / cpu_of(runs[1])) << " times).\n";
+           << fmt("%.1f", runs[5].seconds() / runs[1].seconds()) << " times).\n";
         md << field_presets_text::kDiscussion;
-        splice(doc, md.str());
+        write_file_atomically(
+            doc, study::with_block_replaced(study::read_text(doc), "field-presets", md.str()));
         std::cerr << "wrote " << doc << "\n";
     } catch (const std::exception& e) {
         std::cerr << "field_presets_study: " << e.what() << "\n";

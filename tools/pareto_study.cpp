@@ -30,10 +30,12 @@
 #include "avalanche/app/prepared_scene.hpp"
 #include "avalanche/app/quality_preset.hpp"
 #include "avalanche/core/simulation.hpp"
+#include "avalanche/io/atomic_file.hpp"
 #include "avalanche/io/enum_names.hpp"
 #include "avalanche/io/scenario_file.hpp"
 #include "avalanche/io/svg_plot.hpp"
 #include "pareto_text.hpp"
+#include "study_support.hpp"
 #include "support/analytic_studies.hpp"
 
 using namespace avalanche;
@@ -176,11 +178,7 @@ void mark_pareto(std::vector<Sample>& samples) {
     }
 }
 
-std::string fmt(const char* f, double x) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, x);
-    return buf;
-}
+using study::fmt;
 
 void write_table(std::ostream& out, const std::vector<Sample>& samples, const std::string& problem,
                  const std::string& secondary_name) {
@@ -214,23 +212,6 @@ void write_plot(const std::filesystem::path& file, const std::vector<Sample>& sa
         plot.series.push_back(std::move(series));
     }
     std::ofstream(file) << svg_line_plot(plot);
-}
-
-// Replaces the text between the markers of the doc (or appends the section).
-void splice(const std::filesystem::path& doc, const std::string& body) {
-    const std::string begin = "<!-- pareto-study:begin -->", end = "<!-- pareto-study:end -->";
-    std::stringstream ss;
-    ss << std::ifstream(doc).rdbuf();
-    std::string text = ss.str();
-    const std::string block = begin + "\n" + body + end;
-    const auto a = text.find(begin), b = text.find(end);
-    if (a != std::string::npos && b != std::string::npos && b > a)
-        text.replace(a, b + end.size() - a, block);
-    else
-        text += "\n" + block + "\n";
-    const auto tmp = doc.string() + ".part";
-    std::ofstream(tmp) << text;
-    std::filesystem::rename(tmp, doc);
 }
 
 }  // namespace
@@ -336,7 +317,8 @@ int main(int argc, char** argv) {
              << fmt("%.3g", std::abs(row.r.runout - ref.runout)) << " | " << fmt("%.3g", row.r.cpu) << " | "
              << fmt("%.2f", row.r.cpu / standard_cpu) << " |\n";
     body << pareto_text::kPresetsNote;
-    splice(doc, body.str());
+    write_file_atomically(
+        doc, study::with_block_replaced(study::read_text(doc), "pareto-study", body.str()));
     std::cerr << "wrote " << doc << " and " << figures << " in " << study_wall << " s\n";
     return 0;
 }

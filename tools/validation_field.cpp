@@ -66,11 +66,7 @@ double number(const std::map<std::string, std::string>& row, const std::string& 
     return it == row.end() || it->second.empty() ? std::nan("") : std::stod(it->second);
 }
 
-nlohmann::json read_json(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path, "cannot be read");
-    return nlohmann::json::parse(in);
-}
+using study::read_json;
 
 // The twin experiment's "truth": off the sweep grid (between 20 and 25 deg).
 constexpr double kTwinDelta = 22.0;

@@ -28,12 +28,6 @@
 
 namespace avalanche::validation {
 
-std::string fmt(const char* f, double x) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, x);
-    return buf;
-}
-
 void write_svg(const StudyOptions& o, const std::string& name, const std::string& svg) {
     std::filesystem::create_directories(o.figures_dir());
     write_file_atomically(o.figures_dir() + "/" + name, svg);

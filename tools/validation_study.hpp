@@ -9,6 +9,7 @@
 #include <string>
 
 #include "paper_chute.hpp"
+#include "study_support.hpp"
 
 namespace avalanche::validation {
 
@@ -32,7 +33,7 @@ std::string koch_section(const StudyOptions& o);
 std::string field_section(const StudyOptions& o);
 
 // Formatting helpers shared by the parts.
-std::string fmt(const char* f, double x);
+using study::fmt;
 void write_svg(const StudyOptions& o, const std::string& name, const std::string& svg);
 
 }  // namespace avalanche::validation

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "study_support.hpp"
 #include "support/analytic_chute.hpp"
 #include "support/analytic_harness.hpp"
 #include "support/analytic_rigid_block.hpp"
@@ -41,11 +42,7 @@ NumericsParams numerics(const Variant& v) {
     return n;
 }
 
-std::string fmt(const char* f, double x) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, x);
-    return buf;
-}
+using study::fmt;
 std::string order(double coarse, double fine) {
     return coarse > 0.0 && fine > 0.0 ? fmt("%.2f", observed_order(coarse, fine)) : "";
 }
