@@ -321,7 +321,6 @@ std::string twin_section(const std::string& scenario, const std::string& out,
 std::string field_section(const StudyOptions& o) {
     const std::string scenario = o.source_dir + "/scenarios/field_fluchthorn/scenario.toml";
     const std::string out = o.work_dir + "/field_fluchthorn";
-    std::filesystem::create_directories(o.work_dir);
     std::string sweep = "delta=";
     for (std::size_t k = 0; k < kDeltas.size(); ++k) sweep += (k ? "," : "") + kDeltas[k];
     // The cell size is the scenario's own: batch cannot sweep or override it (docs/batch.md).
