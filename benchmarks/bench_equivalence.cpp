@@ -36,7 +36,7 @@ struct Fnv {
             h *= 1099511628211ULL;
         }
     }
-    void add(const std::vector<double>& v) { add(v.data(), v.size() * sizeof(double)); }
+    void add(const FieldStorage& v) { add(v.data(), v.size() * sizeof(double)); }
     void add(double x) { add(&x, sizeof x); }
 };
 

@@ -167,9 +167,9 @@ void Simulation::resume(const LoopState& loop, const std::vector<double>& h, con
     const std::size_t n = state_.h.raw().size();
     if (h.size() != n || hu.size() != n || hv.size() != n)
         throw InputError("checkpoint", "the state arrays do not fit the grid of the run");
-    state_.h.raw() = h;
-    state_.hu.raw() = hu;
-    state_.hv.raw() = hv;
+    state_.h.raw().assign(h.begin(), h.end());
+    state_.hu.raw().assign(hu.begin(), hu.end());
+    state_.hv.raw().assign(hv.begin(), hv.end());
     // The box is recomputed from the state: the steps that follow find the same wet
     // cells from it as from the box the saving run carried (both hold every wet cell),
     // so dt and every update are unchanged (tests/cli/test_checkpoint_resume.cpp).
@@ -183,7 +183,7 @@ void Simulation::resume(const LoopState& loop, const std::vector<double>& h, con
             throw InputError("checkpoint", "dataset " + std::string(kRegimeDataset) +
                                                " holds " + std::to_string(r) +
                                                ", expected regime flags 0 to 3");
-    stepper_.set_regime(std::vector<RegimeFlags>(regime.begin(), regime.end()));
+    stepper_.set_regime(CellVector<RegimeFlags>(regime.begin(), regime.end()));
     for (auto* o : observers_) o->restore(observers);
     loop_ = loop;
     resumed_ = true;
@@ -252,7 +252,7 @@ RunStatistics Simulation::run() {
         SimulationCheckpoint c{L, state_, {}};
         for (auto* o : observers_) o->save(c.observers);
         // The solver's own carried state besides the fields: the cells' regimes.
-        const std::vector<RegimeFlags>& regime = stepper_.regime();
+        const CellVector<RegimeFlags>& regime = stepper_.regime();
         std::vector<std::int64_t>& saved = c.observers.integers[kRegimeDataset];
         if (regime.empty())  // no advection yet: every cell starts active
             saved.assign(state_.h.raw().size(), kRegimeAtStart);

@@ -22,7 +22,8 @@
 namespace avalanche {
 namespace {
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+template <class A, class B>
+bool same_bits(const A& a, const B& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
@@ -275,7 +276,10 @@ TEST(CheckpointRoundTrip, ResumeRefusesARegimeThatIsNotFlags) {
     const auto resume_with = [&](const CheckpointData& observers) {
         Simulation sim(s.grid, s.terrain, s.scenario.material, s.scenario.numerics, s.initial,
                        s.h_min);
-        sim.resume(loop, state.h.raw(), state.hu.raw(), state.hv.raw(), observers);
+        const auto plain = [](const Field2D& f) {
+            return std::vector<double>(f.raw().begin(), f.raw().end());
+        };
+        sim.resume(loop, plain(state.h), plain(state.hu), plain(state.hv), observers);
         return std::vector<std::int64_t>(sim.stepper().regime().begin(),
                                          sim.stepper().regime().end());
     };

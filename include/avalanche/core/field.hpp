@@ -1,11 +1,14 @@
 #pragma once
 // A scalar cell field on a Grid, padded with ghost layers on every side so that
 // stencils near the edges need no branches. Storage is one contiguous
-// std::vector, row-major (x fastest), so row sweeps vectorise.
+// vector, row-major (x fastest), so row sweeps vectorise; large fields sit on huge
+// pages (field_storage.hpp).
 #include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <vector>
+
+#include "avalanche/core/field_storage.hpp"
 
 namespace avalanche {
 
@@ -33,8 +36,8 @@ public:
     [[nodiscard]] const double* row(int j) const { return data_.data() + index(0, j); }
 
     void fill(double v) { std::fill(data_.begin(), data_.end(), v); }
-    std::vector<double>& raw() { return data_; }
-    [[nodiscard]] const std::vector<double>& raw() const { return data_; }
+    FieldStorage& raw() { return data_; }
+    [[nodiscard]] const FieldStorage& raw() const { return data_; }
 
     // Interior values as a dense nx*ny row-major vector (j = 0 first).
     [[nodiscard]] std::vector<double> interior() const {
@@ -67,7 +70,7 @@ public:
 
 private:
     int nx_ = 0, ny_ = 0, ng_ = 0, stride_ = 0;
-    std::vector<double> data_;
+    FieldStorage data_;
 };
 
 }  // namespace avalanche

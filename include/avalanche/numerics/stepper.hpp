@@ -60,8 +60,8 @@ class Stepper {
     // to advection, because a cell whose compression nothing confirms keeps its regime.
     // Empty until the first advection (every cell kRegimeAtStart). A restart from a
     // checkpoint must restore it to reproduce the uninterrupted run bitwise.
-    [[nodiscard]] const std::vector<RegimeFlags>& regime() const { return regime_; }
-    void set_regime(std::vector<RegimeFlags> r) { regime_ = std::move(r); }
+    [[nodiscard]] const CellVector<RegimeFlags>& regime() const { return regime_; }
+    void set_regime(CellVector<RegimeFlags> r) { regime_ = std::move(r); }
     // The budget of a state: max over wet cells of
     //   |u|^2/2 + g (z_b + h_n g/g_n) + 2 k_max g_n h_n.
     [[nodiscard]] double energy_budget_of(const State& s) const;
@@ -174,7 +174,7 @@ class Stepper {
     std::array<std::vector<double>, 4>
         edge_outflow_;  // per face of the west, east, south, north edges
     std::uint64_t cell_updates_ = 0;
-    std::vector<RegimeFlags> regime_;  // see regime()
+    CellVector<RegimeFlags> regime_;  // see regime()
 };
 
 }  // namespace avalanche
