@@ -1,6 +1,6 @@
 #pragma once
 // Storage of the grid-sized fields (Field2D, the regime flags). Large arrays start
-// near a 2 MiB boundary and are offered to the kernel for transparent huge pages
+// on a 2 MiB boundary and are offered to the kernel for transparent huge pages
 // (madvise), because on the project's virtual machines first touching a grid's memory
 // 4 KiB page by 4 KiB page was most of the setup of a large scene: benchmark (d)'s
 // 2000 x 2000 DEM spent about 2 of its 2.0-2.5 s of setup in page faults and zeroing,
@@ -16,10 +16,10 @@ namespace avalanche {
 inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 inline constexpr std::size_t kHugePageMinBytes = std::size_t{4} << 20;
 
-// Raw bytes for a field, 64-byte aligned (a cache line, an AVX-512 vector). From
-// kHugePageMinBytes on: staggered from a 2 MiB boundary (field_storage.cpp says why)
-// and advised for huge pages (Linux; elsewhere, or where the kernel declines, the
-// memory is ordinary). Throws std::bad_alloc. Free with free_field_bytes.
+// Raw bytes for a field, 64-byte aligned (a cache line, an AVX-512 vector); from
+// kHugePageMinBytes on, on a 2 MiB boundary and advised for huge pages (Linux;
+// elsewhere, or where the kernel declines, the memory is ordinary). Throws
+// std::bad_alloc. Free with free_field_bytes.
 void* allocate_field_bytes(std::size_t bytes);
 void free_field_bytes(void* p) noexcept;
 
