@@ -31,4 +31,8 @@ void validate(const NumericsParams& n) {
         throw ConfigError("numerics.gravity", "expected a positive gravity in m/s^2");
 }
 
+double advection_courant(const NumericsParams& n) {
+    return n.splitting == Splitting::lsl ? 0.5 * n.cfl : n.cfl;
+}
+
 }  // namespace avalanche

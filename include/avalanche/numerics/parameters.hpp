@@ -40,4 +40,8 @@ struct NumericsParams {
 
 void validate(const NumericsParams& n);
 
+// The Courant number of each advection: the step's for S L S, half of it for L S L,
+// which advects twice per step over half the step.
+double advection_courant(const NumericsParams& n);
+
 }  // namespace avalanche
