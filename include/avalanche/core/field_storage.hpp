@@ -3,9 +3,10 @@
 // on a 2 MiB boundary and are offered to the kernel for transparent huge pages
 // (madvise), because on the project's virtual machines first touching a grid's memory
 // 4 KiB page by 4 KiB page was most of the setup of a large scene: benchmark (d)'s
-// 2000 x 2000 DEM spent about 2 of its 2.0-2.5 s of setup in page faults and zeroing,
-// for a run of 0.06 s (docs/performance.md, "Setup of a large grid"); with 2 MiB pages
-// the setup takes 0.4-1.2 s. The values, and so the results, are the same to the bit.
+// 2000 x 2000 DEM spent about 2 of its 2.0-2.6 s of setup in page faults and zeroing,
+// for a run of 0.06 s; with 2 MiB pages the setup took 0.38-1.5 s (docs/performance.md,
+// "A new machine", "Setup of a large grid"). The values, and so the results, are the
+// same to the bit.
 // Arrays under kHugePageMinBytes stay in small pages.
 #include <cstddef>
 #include <new>
