@@ -42,6 +42,9 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity
     v_hi.assign(n, -kNoVelocityBound);
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);
+    regime_row.assign(static_cast<std::size_t>(stride), kRegimeAtStart);
+    held_regime.assign(static_cast<std::size_t>(stride) * 2 * kRegimeHeldRows, kRegimeAtStart);
+    held_rows.reserve(2 * kRegimeHeldRows);
     for (WaitingRows& wr : waiting) {
         wr.stride = stride;
         for (auto* a : {&wr.h, &wr.hu, &wr.hv})
@@ -89,8 +92,8 @@ void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
 
 // ---------------------------------------------------------------- stage 1: per cell
 
-// Pressure coefficients k p of row r in the regime of each cell (update_regime) and the
-// invariant bounds of the update's clamp, columns [ia, ib).
+// Pressure coefficients k p of row r in the regime of each cell (w.regime_row, from
+// regime_row_into) and the invariant bounds of the update's clamp, columns [ia, ib).
 void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& w) const {
     const bool metric = terrain_.has_metric;
     const bool isotropic = material_.earth_pressure == EarthPressureModel::isotropic;
@@ -105,7 +108,7 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
                               terrain_.normal_thickness.row(r),
                               metric ? terrain_.sx.row(r) : nullptr,
                               metric ? terrain_.sy.row(r) : nullptr,
-                              isotropic ? nullptr : regime_.data() + s.h.index(0, r)};
+                              isotropic ? nullptr : w.regime_row.data() + kGhostLayers};
     const PressureRowOutput out{w.cx.data() + o,      w.cy.data() + o,   w.u_lo.data() + o,
                                 w.u_hi.data() + o,    w.v_lo.data() + o, w.v_hi.data() + o,
                                 w.speed_hi.data() + o, w.ax.data() + o,    w.ay.data() + o};
@@ -119,33 +122,47 @@ ActiveBox Stepper::per_cell_box(const ActiveBox& b) const {
             std::min(b.j1 + ng, grid_.ny + ng)};
 }
 
-void Stepper::update_regime(const State& s, double tau, int ia, int ib, int ja, int jb) {
+void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, int ib,
+                              StripBuffers& w) const {
     const int ng = kGhostLayers;
-    // Velocities friction holds at rest: S L S leaves up to tan(delta) g_n tau / 2 in a
-    // deposit after its last half source step (regime_row); g bounds every cell's g_n.
-    const double rest_speed = 0.5 * tan_delta_ * numerics_.gravity * tau;
-    const bool metric = terrain_.has_metric;
-    if (regime_.size() != s.h.raw().size()) regime_.assign(s.h.raw().size(), kRegimeAtStart);
-    // Each cell reads only its own previous regime: the rows go to the threads in any order.
-#pragma omp parallel for schedule(static) if (threaded_)
-    for (int r = ja; r < jb; ++r) {
-        // Differences across rows, clamped at the padding.
-        const int jm = std::max(r - 1, -ng), jp = std::min(r + 1, grid_.ny + ng - 1);
-        const int jmm = std::max(r - 2, -ng), jpp = std::min(r + 2, grid_.ny + ng - 1);
-        RegimeRowInput in{s.h.row(r),   s.hu.row(r),  s.hv.row(r),   s.h.row(jm),
-                          s.hv.row(jm), s.h.row(jp),  s.hv.row(jp),  s.h.row(jmm),
-                          s.hv.row(jmm), s.h.row(jpp), s.hv.row(jpp)};
-        if (metric) {
-            in.sx = terrain_.sx.row(r);
-            in.sy = terrain_.sy.row(r);
-            in.sy_s = terrain_.sy.row(jm);
-            in.sy_n = terrain_.sy.row(jp);
-            in.sy_ss = terrain_.sy.row(jmm);
-            in.sy_nn = terrain_.sy.row(jpp);
-        }
-        regime_row(in, regime_.data() + s.h.index(0, r), h_min_, rest_speed, ia, ib, -ng,
-                   grid_.nx + ng - 1);
+    RegimeFlags* row = w.regime_row.data() + ng;  // column 0
+    // The row's previous regime, which regime_row replaces cell by cell.
+    std::copy_n(regime_.data() + s.h.index(ia, r), ib - ia, row + ia);
+    // Differences across rows, clamped at the padding.
+    const int jm = std::max(r - 1, -ng), jp = std::min(r + 1, grid_.ny + ng - 1);
+    const int jmm = std::max(r - 2, -ng), jpp = std::min(r + 2, grid_.ny + ng - 1);
+    RegimeRowInput in{s.h.row(r),    s.hu.row(r), s.hv.row(r),  s.h.row(jm),
+                      s.hv.row(jm),  s.h.row(jp), s.hv.row(jp), s.h.row(jmm),
+                      s.hv.row(jmm), s.h.row(jpp), s.hv.row(jpp)};
+    if (terrain_.has_metric) {
+        in.sx = terrain_.sx.row(r);
+        in.sy = terrain_.sy.row(r);
+        in.sy_s = terrain_.sy.row(jm);
+        in.sy_n = terrain_.sy.row(jp);
+        in.sy_ss = terrain_.sy.row(jmm);
+        in.sy_nn = terrain_.sy.row(jpp);
     }
+    regime_row(in, row, h_min_, rest_speed, ia, ib, -ng, grid_.nx + ng - 1);
+}
+
+void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffers& w) {
+    // The thread's rows: its block's, and beyond the box's first and last update rows
+    // those of the block at that end. Rows of the other blocks it computed are theirs.
+    const bool first_block = w.block_j0 == w.box_j0, last_block = w.block_j1 == w.box_j1;
+    if ((!first_block && r < w.block_j0) || (!last_block && r >= w.block_j1)) return;
+    const RegimeFlags* row = w.regime_row.data() + kGhostLayers;
+    const bool held = (!first_block && r < w.block_j0 + kRegimeHeldRows) ||
+                      (!last_block && r >= w.block_j1 - kRegimeHeldRows);
+    if (!held) {
+        std::copy_n(row + ia, ib - ia, regime_.data() + s.h.index(ia, r));
+        return;
+    }
+    const std::size_t q = w.held_rows.size();
+    w.held_rows.push_back(r);
+    w.held_i0 = ia;
+    w.held_i1 = ib;
+    std::copy_n(row + ia, ib - ia,
+                w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + kGhostLayers + ia);
 }
 
 // ---------------------------------------------------------------- one strip
@@ -192,7 +209,17 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
     }
     w.vel_end = std::max(w.vel_end, v1);
 
-    for (int r = std::max(q0, w.p_end); r < q1; ++r) pressure_row(s, r, pc0, pc1, w);
+    // The regime of each pressure row first (regime_row_into): its previous regime and
+    // the state's rows r - 2 .. r + 2, none of which a strip has written yet.
+    const bool regimes = material_.earth_pressure != EarthPressureModel::isotropic;
+    const double rest_speed = 0.5 * tan_delta_ * numerics_.gravity * tau;  // see regime_row
+    for (int r = std::max(q0, w.p_end); r < q1; ++r) {
+        if (regimes) {
+            regime_row_into(s, rest_speed, r, pc0, pc1, w);
+            keep_regime_row(s, r, pc0, pc1, w);
+        }
+        pressure_row(s, r, pc0, pc1, w);
+    }
     w.p_end = std::max(w.p_end, q1);
 
     const double* sh = s.h.raw().data();
@@ -444,12 +471,10 @@ void Stepper::advect(State& s, double tau) {
         if (w.rows == 0) w.allocate(s.h.stride(), kStripRows + 8);
         w.carried_for = std::numeric_limits<int>::min();  // a new state: nothing carries over
     }
-    // The regime of every cell the pressure stage computes, from the state before any
-    // strip writes into it.
-    if (material_.earth_pressure != EarthPressureModel::isotropic) {
-        const ActiveBox per_cell = per_cell_box(b);
-        update_regime(s, tau, per_cell.i0, per_cell.i1, per_cell.j0, per_cell.j1);
-    }
+    // The regimes are computed row by row with the pressure stage (advect_strip) and
+    // replace the previous ones in regime_ as they go, but for the rows near a block's
+    // inner ends, which the neighbouring block also computes from the previous ones.
+    if (regime_.size() != s.h.raw().size()) regime_.assign(s.h.raw().size(), kRegimeAtStart);
     // Each thread takes a block of consecutive strips. Its first and last strips share
     // rows with the neighbouring blocks, whose strips read the old state there: their
     // updated rows wait in the thread's buffers until every block is done. The other
@@ -468,6 +493,11 @@ void Stepper::advect(State& s, double tau) {
         const auto [first, last] = block_of(t, n);
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
         w.waiting[0].j1 = w.waiting[1].j1 = w.waiting[0].j0 = w.waiting[1].j0 = 0;
+        w.block_j0 = b.j0 + first * kStripRows;
+        w.block_j1 = std::min(b.j0 + last * kStripRows, b.j1);
+        w.box_j0 = b.j0;
+        w.box_j1 = b.j1;
+        w.held_rows.clear();
         for (int k = first; k < last; ++k) {
             const int j = b.j0 + k * kStripRows;
             const int slot = k == first && t > 0 ? 0 : (k == last - 1 && t < n - 1 ? 1 : -1);
@@ -485,8 +515,16 @@ void Stepper::advect(State& s, double tau) {
     if (b.j1 == grid_.ny)
         for (int i = b.i0; i < b.i1; ++i) out += edge_outflow_[3][i];
     outflow_volume_ += out;
-    // The rows that waited.
+    // The regimes and the rows that waited.
     const std::size_t w = static_cast<std::size_t>(b.i1 - b.i0);
+    for (int t = 0; t < team; ++t) {
+        const StripBuffers& sb = strips_[static_cast<std::size_t>(t)];
+        for (std::size_t q = 0; q < sb.held_rows.size(); ++q)
+            std::copy_n(sb.held_regime.data() + static_cast<std::ptrdiff_t>(q) * sb.stride +
+                            kGhostLayers + sb.held_i0,
+                        sb.held_i1 - sb.held_i0,
+                        regime_.data() + s.h.index(sb.held_i0, sb.held_rows[q]));
+    }
     for (int t = 0; t < team; ++t) {
         for (const StripBuffers::WaitingRows& wr : strips_[static_cast<std::size_t>(t)].waiting) {
             for (int j = wr.j0; j < wr.j1; ++j) {

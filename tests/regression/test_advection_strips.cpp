@@ -6,13 +6,20 @@
 // on a flow with wet/dry fronts, outflow and cells of every kind. A strip writes its
 // updated rows into the state at once unless it borders another thread's block (those
 // wait until every block is done): 3 and 7 threads on the 9 strips of the box give
-// blocks of three, two and one strips, where most or all strips wait.
+// blocks of three, two and one strips, where most or all strips wait. The regimes are
+// computed with the pressure stage, row by row, and replace the previous ones as they
+// go, but near the blocks' inner ends, where the neighbouring block reads the previous
+// ones: they must be those a whole-grid pass computes from the state before the
+// advection, for every thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "avalanche/numerics/stepper.hpp"
+#include "avalanche/physics/dem_frame.hpp"
 #include "support/analytic_harness.hpp"
 
 using namespace avalanche;
@@ -22,15 +29,12 @@ namespace {
 struct Result {
     State state;
     double outflow = 0.0;
+    CellVector<RegimeFlags> regime;
 };
 
-// 220 x 130 cells (above the stepper's threading threshold): a wavy dam holding 2 m
-// over a 0.2 m layer, dry ground beyond x = 180 m, on a 10 deg plane, 10 steps.
-Result run(Scheme scheme, Boundary boundary, int threads) {
-    const analytic::ScopedThreads scoped(threads);
-    const Grid g = analytic::box_grid(0.0, 220.0, 0.0, 130.0, 1.0);
-    const TerrainFields t = analytic::plane_terrain(g, 10.0, 9.81);
-    State s = analytic::make_state(
+// The wavy dam of run() (below) on a 10 deg plane.
+State dam_state(const Grid& g) {
+    return analytic::make_state(
         g,
         [](double xa, double xb, double ya, double yb) {
             const double x = 0.5 * (xa + xb), y = 0.5 * (ya + yb);
@@ -40,6 +44,15 @@ Result run(Scheme scheme, Boundary boundary, int threads) {
         [](double x, double y) {
             return std::pair<double, double>{2.0 + 0.01 * x, std::sin(y / 10.0)};
         });
+}
+
+// 220 x 130 cells (above the stepper's threading threshold): a wavy dam holding 2 m
+// over a 0.2 m layer, dry ground beyond x = 180 m, on a 10 deg plane, 10 steps.
+Result run(Scheme scheme, Boundary boundary, int threads) {
+    const analytic::ScopedThreads scoped(threads);
+    const Grid g = analytic::box_grid(0.0, 220.0, 0.0, 130.0, 1.0);
+    const TerrainFields t = analytic::plane_terrain(g, 10.0, 9.81);
+    State s = dam_state(g);
     MaterialParams m;
     NumericsParams n;
     n.scheme = scheme;
@@ -47,7 +60,7 @@ Result run(Scheme scheme, Boundary boundary, int threads) {
     Stepper stepper(g, t, m, n, 1e-4);
     stepper.reset_active_box(s);
     for (int step = 0; step < 10; ++step) stepper.step(s, 0.5 * stepper.stable_dt(s));
-    return {s, stepper.outflow_volume()};
+    return {s, stepper.outflow_volume(), stepper.regime()};
 }
 
 bool same_bits(const Field2D& a, const Field2D& b) {
@@ -65,7 +78,7 @@ TEST(AdvectionStrips, OneAndTwoThreadsGiveTheSameBits) {
                 const Result many = run(scheme, boundary, threads);
                 EXPECT_TRUE(same_bits(one.state.h, many.state.h) &&
                             same_bits(one.state.hu, many.state.hu) &&
-                            same_bits(one.state.hv, many.state.hv))
+                            same_bits(one.state.hv, many.state.hv) && one.regime == many.regime)
                     << "scheme " << static_cast<int>(scheme) << " boundary "
                     << static_cast<int>(boundary) << " threads " << threads;
                 EXPECT_EQ(one.outflow, many.outflow);
@@ -77,5 +90,70 @@ TEST(AdvectionStrips, OneAndTwoThreadsGiveTheSameBits) {
                 EXPECT_GT(one.outflow, 0.0);
             }
         }
+    }
+}
+
+// Each advection's regimes against a whole-grid pass of regime_row over the cells of
+// the pressure stage (the active box and two cells around it), each row from its
+// previous regime and the state before the advection, as the regimes were computed
+// before they moved into the strips. On the chute plane and on a DEM of a plane with
+// a cross-slope wave (whose slopes enter the regimes' rest test).
+TEST(AdvectionStrips, RegimesAreThoseOfTheStateBeforeEachAdvection) {
+    const int ng = kGhostLayers;
+    const Grid g = analytic::box_grid(0.0, 220.0, 0.0, 130.0, 1.0);
+    std::vector<double> z(g.cells());
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i)
+            z[static_cast<std::size_t>(j) * g.nx + i] =
+                -g.x_center(i) * std::tan(10.0 * std::acos(-1.0) / 180.0) +
+                2.0 * std::sin(g.y_center(j) / 20.0);
+    const TerrainFields chute = analytic::plane_terrain(g, 10.0, 9.81);
+    const TerrainFields dem = dem_terrain(g, z, 9.81);
+    ASSERT_TRUE(dem.has_metric);
+    const MaterialParams m;
+    const NumericsParams n;
+    const double h_min = 1e-4;
+    for (const TerrainFields* terrain : {&chute, &dem})
+    for (const int threads : {1, 2, 3, 7}) {
+        const TerrainFields& t = *terrain;
+        const analytic::ScopedThreads scoped(threads);
+        State s = dam_state(g);
+        Stepper stepper(g, t, m, n, h_min);
+        stepper.reset_active_box(s);
+        long passive = 0;
+        for (int step = 0; step < 6; ++step) {
+            stepper.step(s, 0.5 * stepper.stable_dt(s));  // sets the box and the threading
+            stepper.fill_ghosts(s);
+            CellVector<RegimeFlags> expected = stepper.regime();
+            const double tau = 0.25 * stepper.stable_dt(s);
+            const ActiveBox b = stepper.active_box();
+            const int i0 = std::max(b.i0 - ng, -ng), i1 = std::min(b.i1 + ng, g.nx + ng);
+            const int j0 = std::max(b.j0 - ng, -ng), j1 = std::min(b.j1 + ng, g.ny + ng);
+            const double rest_speed = 0.5 * m.tan_delta() * n.gravity * tau;
+            for (int r = j0; r < j1; ++r) {
+                const auto row = [&](const Field2D& f, int dr) {
+                    return f.row(std::clamp(r + dr, -ng, g.ny + ng - 1));
+                };
+                RegimeRowInput in{row(s.h, 0),  row(s.hu, 0),  row(s.hv, 0),  row(s.h, -1),
+                                  row(s.hv, -1), row(s.h, 1),  row(s.hv, 1),  row(s.h, -2),
+                                  row(s.hv, -2), row(s.h, 2),  row(s.hv, 2)};
+                if (t.has_metric) {
+                    in.sx = row(t.sx, 0);
+                    in.sy = row(t.sy, 0);
+                    in.sy_s = row(t.sy, -1);
+                    in.sy_n = row(t.sy, 1);
+                    in.sy_ss = row(t.sy, -2);
+                    in.sy_nn = row(t.sy, 2);
+                }
+                regime_row(in, expected.data() + s.h.index(0, r), h_min, rest_speed, i0, i1, -ng,
+                           g.nx + ng - 1);
+            }
+            stepper.advect(s, tau);
+            ASSERT_TRUE(stepper.regime() == expected)
+                << (t.has_metric ? "DEM" : "chute") << ", " << threads << " threads, step " << step;
+            for (const RegimeFlags f : expected) passive += f != kRegimeAtStart ? 1 : 0;
+        }
+        // Cells of both regimes: the comparison saw regimes change.
+        EXPECT_GT(passive, 1000) << threads << " threads";
     }
 }

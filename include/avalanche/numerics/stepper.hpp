@@ -115,6 +115,18 @@ class Stepper {
             }
         };
         WaitingRows waiting[2];
+        // The regime of the row the pressure stage computes next (column 0 at ng): its
+        // previous regime, then the new one (regime_row_into).
+        std::vector<RegimeFlags> regime_row;
+        // The thread's block of update rows [block_j0, block_j1) and the box's rows
+        // [box_j0, box_j1): which new regime rows are the thread's to store, and which
+        // must wait (keep_regime_row).
+        int block_j0 = 0, block_j1 = 0, box_j0 = 0, box_j1 = 0;
+        // New regime rows that must wait until every block is done: rows held_rows[q]
+        // at held_regime[q * stride], columns [held_i0, held_i1).
+        std::vector<RegimeFlags> held_regime;
+        std::vector<int> held_rows;
+        int held_i0 = 0, held_i1 = 0;
         std::vector<double> row_h, row_hu, row_hv, row_u, row_v,
             row_a;  // one row: the y-predictor's scratch (row_a: celerity in x)
         // Rows computed so far of each stage (end, exclusive), valid while the next
@@ -136,9 +148,14 @@ class Stepper {
     // The cells of the per-cell stage (regimes, velocity quotients, pressure) for the
     // active box b: b widened by the ghost layers, into the padding.
     [[nodiscard]] ActiveBox per_cell_box(const ActiveBox& b) const;
-    // The regime of the cells [ia, ib) x [ja, jb) from the state s before an advection
-    // over tau (regime_row).
-    void update_regime(const State& s, double tau, int ia, int ib, int ja, int jb);
+    // The new regime of row r, columns [ia, ib), into w.regime_row, from the state s
+    // before the advection and the row's previous regime in regime_ (regime_row).
+    void regime_row_into(const State& s, double rest_speed, int r, int ia, int ib,
+                         StripBuffers& w) const;
+    // Stores w.regime_row (row r, columns [ia, ib)) into regime_ if the row is the
+    // thread's, at once or, where another thread still reads its previous regime, after
+    // every block is done (advect()).
+    void keep_regime_row(const State& s, int r, int ia, int ib, StripBuffers& w);
     // Advects rows [j_begin, j_end) of s; the updated rows go into s itself, or into
     // w.waiting[wait_slot] when wait_slot is 0 or 1.
     void advect_strip(State& s, double tau, int j_begin, int j_end, StripBuffers& w,
@@ -166,6 +183,12 @@ class Stepper {
     // Rows per strip: the stage buffers of a strip (24 arrays of kStripRows + 8 rows)
     // stay in a core's cache for grids up to a few thousand cells wide.
     static constexpr int kStripRows = 16;
+    // Rows of a block, from each of its inner ends, whose new regime waits until every
+    // block is done: a neighbouring block's stages compute the regimes of up to 3 rows
+    // of this block (advect_strip) from the previous ones, and writing a row while
+    // another thread reads it would be a data race. (Its values would agree: regime_row
+    // gives a cell the same regime again from its own result.)
+    static constexpr int kRegimeHeldRows = 4;
     double k_max_;          // largest earth-pressure coefficient
     double energy_budget_;  // see energy_budget(); +infinity = not set
     bool budget_set_ = false;
