@@ -155,3 +155,20 @@ TEST(SimilaritySolution, GodunovSavageHutterFromRestDoesNotGrowOnFineCells) {
     EXPECT_LT(std::abs(fine.l_x - fine.l_x_exact), std::abs(coarse.l_x - coarse.l_x_exact));
     EXPECT_LT(fine.l1_relative, 2e-2);
 }
+
+// Known open defect (docs/verification.md, finding 2, "Both schemes on cells of 0.0125
+// m"): the Savage-Hutter cap released from rest converges to dx = 0.025 m (WAF E1
+// 7.0e-4, 2.3e-4 at 0.05, 0.025) and then fails on 0.0125 m cells with either scheme
+// (WAF E1 0.24, Godunov 0.25, L_x 7.0 m against 5.82), whatever the Courant number
+// or h_min: a period-2 velocity oscillation starts at the thin front cell in the
+// first steps and runs upslope at the stencil's speed with a passive cell at its
+// head. The isotropic cap and the SH cap released moving converge there (6.3e-5,
+// 8.5e-5). Disabled until fixed (run it with --gtest_also_run_disabled_tests); the
+// bound is the WAF error at 0.025 m, which a converging scheme halves.
+TEST(SimilaritySolution, DISABLED_SavageHutterFromRestConvergesOnCellsOf0125) {
+    const SimilarityCase c = similarity_1d(EarthPressureModel::savage_hutter, /*from_rest=*/true);
+    const SimilarityResult r = run_similarity(c, with_scheme(Scheme::waf), 0.0125);
+    std::cout << "[similarity] WAF, SH, from rest, dx 0.0125: E1 " << r.l1_relative << ", L_x "
+              << r.l_x << " (exact " << r.l_x_exact << ")\n";
+    EXPECT_LT(r.l1_relative, 2.3e-4);
+}
