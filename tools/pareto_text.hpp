@@ -40,8 +40,9 @@ the chute with a 0.5 m base cell: `draft` doubles the cell size and the Courant 
 and advects once per step (SLS), `standard` is the default (the paper's scheme and
 Courant number 0.2, L S L), `fine` halves the cell size at Courant 0.2 with SLS. On the
 chute, draft costs well under a tenth of standard (0.06-0.07 in the last runs of the
-study: the CPU times of these short runs are noisy) for 1.2x its deposit error (runout
-within a cell of 1 m); fine costs about 3x for 0.7x the deposit error and about half its
+study: the CPU times of these short runs are noisy) for 1.25x its deposit error (runout
+1.09 m off, about one of its 1 m cells; 0.09 m until a front's dry neighbours stopped
+counting as cells at rest in the regime rule, 2026-12-02, sixth session); fine costs about 3x for 0.7x the deposit error and about half its
 runout error. Until 2026-12-02 fine used Courant 0.4 (SLS C=0.4 at 0.25 m in the
 table: 1.5-1.9x the cost for 0.6x the error); on the field scene (next section), whose
 deposit is two to four times deeper than the fine preset's cells, that left the deposit

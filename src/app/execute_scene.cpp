@@ -80,8 +80,8 @@ std::optional<std::string> numerics_caution(const NumericsParams& n, const Mater
     return fmt::format(
         "numerics: Godunov advecting at Courant {:.3g} (cfl {:.3g}, {}); with Savage-Hutter "
         "pressure the first-order scheme diverged under refinement at Courant 0.2 and more per "
-        "advection on a mass released from rest on cells where the defaults (cfl 0.2, L S L) "
-        "converged (docs/verification.md, finding 2)",
+        "advection on a mass released from rest, on cells where its default (cfl 0.2, L S L) "
+        "converged; WAF converged at both (docs/verification.md, finding 2)",
         c, n.cfl, n.splitting == Splitting::lsl ? "L S L" : "S L S");
 }
 

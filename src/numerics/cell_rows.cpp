@@ -127,7 +127,8 @@ namespace {
 
 // The regime of cell i from its previous regime: x from the cells im, ip (one away)
 // and imm, ipp (two away) of the row, y from the rows s, n, ss, nn. A velocity is a
-// (momentum, depth) pair, a thin or dry cell at rest (momentum 0 over depth 1), and
+// (momentum, depth) pair, a thin or dry cell's (momentum 0 over depth 1; a difference
+// with one extends, whatever the velocities, see extends below), and
 // differences of velocities are compared multiplied out by both (positive) depths, so
 // that no division is needed. Metric: the DEM frame, whose velocities are horizontal;
 // the rest test takes the along-surface component u sqrt(1 + s_x^2), v sqrt(1 + s_y^2).
@@ -145,11 +146,20 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
     // set neighbouring cells' pressures k_pass / k_act apart, a push the friction could
     // not hold: with one advection per step at Courant 0.4 the parametric chute's deposit
     // on 0.125 m cells kept moving, cell against cell, at up to 0.4 m/s for 40 s.
-    // ra, rb: 1 where the cell is within the rest speed, else 0.
-    const auto extends = [](double qa, double da, double ra, double qb, double db, double rb) {
+    // A thin or dry cell has no velocity of its own, and a difference with one extends
+    // too: the edge of a flow spreading into dry ground is active. (Taken for a cell at
+    // rest, the dry ground made the last wet cell of a spreading front compress, turned
+    // it passive, and on cells of 0.0125 m the cap released from rest grew a period-2
+    // oscillation from its front that ran through the body: docs/verification.md,
+    // finding 2.)
+    // ra, rb: 1 where the cell is within the rest speed, else 0; wa, wb: 1 where it is
+    // wet, 0 where thin or dry. (Products, not selections, and the lambdas forced inline:
+    // else GCC 12 left the loop scalar, at 25-65 ns per cell.)
+    const auto extends = [](double qa, double da, double ra, double wa, double qb, double db,
+                            double rb, double wb) __attribute__((always_inline)) {
         const double lo = qa * db, hi = qb * da;  // a and b times both depths
         const double rises = hi - lo >= -1e-12 * std::max(std::abs(lo), std::abs(hi)) ? 1.0 : 0.0;
-        return std::max(rises, ra * rb);
+        return 1.0 - (1.0 - std::max(rises, ra * rb)) * (wa * wb);
     };
     // 1 where the along-surface component q/d sqrt(m) is within the rest speed (m = 1 + s^2,
     // 1 in bed-fitted frames).
@@ -179,18 +189,23 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
     struct Cell {
         double h, q, m;
     };
-    const auto next = [&](double was_active, Cell ll, Cell l, Cell c, Cell r, Cell rr) {
+    const auto w_of = [hmin](double hh) { return is_wet(hh, hmin) ? 1.0 : 0.0; };
+    const auto next = [&](double was_active, Cell ll, Cell l, Cell c, Cell r,
+                          Cell rr) __attribute__((always_inline)) {
         const double Qll = q_of(ll.h, ll.q), Dll = d_of(ll.h), Ql = q_of(l.h, l.q), Dl = d_of(l.h);
         const double Qc = q_of(c.h, c.q), Dc = d_of(c.h), Qr = q_of(r.h, r.q), Dr = d_of(r.h);
         const double Qrr = q_of(rr.h, rr.q), Drr = d_of(rr.h);
         const double Rll = rest_of(Qll, Dll, ll.m), Rl = rest_of(Ql, Dl, l.m);
         const double Rc = rest_of(Qc, Dc, c.m), Rr = rest_of(Qr, Dr, r.m);
         const double Rrr = rest_of(Qrr, Drr, rr.m);
+        const double Wll = w_of(ll.h), Wl = w_of(l.h), Wc = w_of(c.h), Wr = w_of(r.h);
+        const double Wrr = w_of(rr.h);
         // 1 or 0 each.
-        const double central = extends(Ql, Dl, Rl, Qr, Dr, Rr);
-        const double confirmed = std::max(
-            (1.0 - extends(Ql, Dl, Rl, Qc, Dc, Rc)) * (1.0 - extends(Qc, Dc, Rc, Qr, Dr, Rr)),
-            1.0 - extends(Qll, Dll, Rll, Qrr, Drr, Rrr));
+        const double central = extends(Ql, Dl, Rl, Wl, Qr, Dr, Rr, Wr);
+        const double confirmed =
+            std::max((1.0 - extends(Ql, Dl, Rl, Wl, Qc, Dc, Rc, Wc)) *
+                         (1.0 - extends(Qc, Dc, Rc, Wc, Qr, Dr, Rr, Wr)),
+                     1.0 - extends(Qll, Dll, Rll, Wll, Qrr, Drr, Rrr, Wrr));
         return std::max(central, (1.0 - confirmed) * was_active);
     };
     const double hh = in.h[i];

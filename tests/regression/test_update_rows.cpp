@@ -304,7 +304,7 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
     std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
     const int w = 43, ng = 2;  // columns -2 .. w - 3 with the padding clamp at both ends
     const double h_min = 1e-3, rest_speed = 0.5;
-    long passive = 0, active = 0, kept = 0, reset = 0, at_rest = 0;
+    long passive = 0, active = 0, kept = 0, reset = 0, at_rest = 0, with_dry = 0;
     for (int trial = 0; trial < 40; ++trial) {
         std::vector<double> h(5 * static_cast<std::size_t>(w)), hu(h.size()), hv(h.size());
         for (std::size_t k = 0; k < h.size(); ++k) {
@@ -343,11 +343,16 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
         regime_row(in, regime.data() + ng, h_min, rest_speed, lo, hi + 1, lo, hi);
         // The reference: a velocity is (momentum, depth), at rest (0, 1) where thin or
         // dry; b - a compared multiplied out by both depths; two velocities whose
-        // along-surface components (q/d sqrt(1 + s^2)) are within the rest speed are equal.
+        // along-surface components (q/d sqrt(1 + s^2)) are within the rest speed are equal;
+        // a difference with a thin or dry cell extends.
         const auto wet = [h_min](double d) { return d >= h_min && d > 0.0; };
         const double rest2 = rest_speed * rest_speed;
         const auto extends = [&](int ka, int kb, const std::vector<double>& q,
                                  const std::vector<double>& slope) {
+            if (!wet(h[ka]) || !wet(h[kb])) {
+                ++with_dry;
+                return true;
+            }
             const double qa = wet(h[ka]) ? q[ka] : 0.0, da = wet(h[ka]) ? h[ka] : 1.0;
             const double qb = wet(h[kb]) ? q[kb] : 0.0, db = wet(h[kb]) ? h[kb] : 1.0;
             const double ma = 1.0 + slope[ka] * slope[ka], mb = 1.0 + slope[kb] * slope[kb];
@@ -390,6 +395,7 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
     EXPECT_GT(kept, 100);
     EXPECT_GT(reset, 50);
     EXPECT_GT(at_rest, 100);  // falling differences that the rest speed cancels
+    EXPECT_GT(with_dry, 100);  // differences with a thin or dry cell
 }
 
 TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
@@ -405,7 +411,11 @@ TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
     //  - at the stretch's two ends: central -0.1, one-sided differences of both signs,
     //    over four cells -0.2: passive (a compression the one-sided test alone misses);
     //  - every other cell: central difference positive: active, whatever it was;
-    //  - a dry cell: back to both active.
+    //  - a dry cell: back to both active;
+    //  - the cells beside it: a difference with a dry cell extends (the edge of a flow
+    //    spreading into dry ground), so their central difference makes them active,
+    //    although u falls from 0.7 to the dry cell's 0 (taken for a cell at rest, the
+    //    one before it kept a passive regime).
     const int w = 30, ng = 2, dry = 27;
     std::vector<double> h(5 * static_cast<std::size_t>(w), 1.0), hu(h.size()), hv(h.size());
     const int slow = 8, fall0 = 16, fall1 = 22;  // u falls from cell fall0 to cell fall1
@@ -435,7 +445,10 @@ TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
                 EXPECT_EQ(got, kRegimeAtStart) << "dry cell";
                 continue;
             }
-            if (c == dry - 1 || c == dry + 1) continue;  // their neighbour is at rest
+            if (c == dry - 1 || c == dry + 1) {
+                EXPECT_EQ(got, kRegimeAtStart) << "cell " << c << " beside the dry one";
+                continue;
+            }
             const bool passive = (c >= fall0 && c <= fall1) ||
                                  (c == slow - 1 && (was & kRegimeXActive) == 0);
             EXPECT_EQ(got, passive ? kRegimeYActive : kRegimeAtStart)

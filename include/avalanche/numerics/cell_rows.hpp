@@ -74,7 +74,8 @@ struct RegimeRowInput {
 // whose along-surface components are both at most rest_speed count as equal (their
 // difference vanishes, so it extends): the stepper passes tan(delta) g tau / 2, below
 // which a velocity is the splitting's residue in a deposit at rest (docs/numerics.md,
-// advection step 2). Each cell reads only its own previous regime,
+// advection step 2). A difference with a thin or dry cell (h < h_min) extends: such a
+// cell has no velocity of its own. Each cell reads only its own previous regime,
 // so rows may be updated in any order and by any thread. The x-differences are clamped
 // to the columns lo and hi. Pointers address column 0.
 void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, double rest_speed,
