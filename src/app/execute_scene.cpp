@@ -70,8 +70,9 @@ void remove_complete_markers(const std::filesystem::path& dir) {
 // Godunov whose advections run at Courant 0.2 or more diverged under refinement on the
 // Savage-Hutter cap released from rest (docs/verification.md, finding 2: E1 3.3e-2,
 // 1.5e-1, 2.6e-1 at dx 0.1, 0.05, 0.025 m with L S L at Courant 0.4, against 3.5e-2,
-// 1.8e-2, 1.6e-2 at 0.2). Not refused: on the other verification cases those runs are
-// sound; said, so that a map made that way is checked against the default.
+// 1.8e-2, 1.6e-2 at 0.2; on 0.0125 m cells Godunov fails at 0.2 too, WAF converges).
+// Not refused: on the other verification cases those runs are sound; said, so that a
+// map made that way is checked against the default.
 std::optional<std::string> numerics_caution(const NumericsParams& n, const MaterialParams& m) {
     const double c = advection_courant(n);
     if (n.scheme != Scheme::godunov || m.earth_pressure != EarthPressureModel::savage_hutter ||

@@ -148,7 +148,7 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
 void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffers& w) {
     // The thread's rows: its block's, and beyond the box's first and last update rows
     // those of the block at that end. Rows of the other blocks it computed are theirs.
-    const bool first_block = w.block_j0 == w.box_j0, last_block = w.block_j1 == w.box_j1;
+    const bool first_block = w.block_j0 == box_.j0, last_block = w.block_j1 == box_.j1;
     if ((!first_block && r < w.block_j0) || (!last_block && r >= w.block_j1)) return;
     const RegimeFlags* row = w.regime_row.data() + kGhostLayers;
     const bool held = (!first_block && r < w.block_j0 + kRegimeHeldRows) ||
@@ -159,8 +159,6 @@ void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffer
     }
     const std::size_t q = w.held_rows.size();
     w.held_rows.push_back(r);
-    w.held_i0 = ia;
-    w.held_i1 = ib;
     std::copy_n(row + ia, ib - ia,
                 w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + kGhostLayers + ia);
 }
@@ -495,8 +493,6 @@ void Stepper::advect(State& s, double tau) {
         w.waiting[0].j1 = w.waiting[1].j1 = w.waiting[0].j0 = w.waiting[1].j0 = 0;
         w.block_j0 = b.j0 + first * kStripRows;
         w.block_j1 = std::min(b.j0 + last * kStripRows, b.j1);
-        w.box_j0 = b.j0;
-        w.box_j1 = b.j1;
         w.held_rows.clear();
         for (int k = first; k < last; ++k) {
             const int j = b.j0 + k * kStripRows;
@@ -517,13 +513,14 @@ void Stepper::advect(State& s, double tau) {
     outflow_volume_ += out;
     // The regimes and the rows that waited.
     const std::size_t w = static_cast<std::size_t>(b.i1 - b.i0);
+    const ActiveBox per_cell = per_cell_box(b);  // the columns keep_regime_row held
     for (int t = 0; t < team; ++t) {
         const StripBuffers& sb = strips_[static_cast<std::size_t>(t)];
         for (std::size_t q = 0; q < sb.held_rows.size(); ++q)
             std::copy_n(sb.held_regime.data() + static_cast<std::ptrdiff_t>(q) * sb.stride +
-                            kGhostLayers + sb.held_i0,
-                        sb.held_i1 - sb.held_i0,
-                        regime_.data() + s.h.index(sb.held_i0, sb.held_rows[q]));
+                            kGhostLayers + per_cell.i0,
+                        per_cell.i1 - per_cell.i0,
+                        regime_.data() + s.h.index(per_cell.i0, sb.held_rows[q]));
     }
     for (int t = 0; t < team; ++t) {
         for (const StripBuffers::WaitingRows& wr : strips_[static_cast<std::size_t>(t)].waiting) {

@@ -118,15 +118,13 @@ class Stepper {
         // The regime of the row the pressure stage computes next (column 0 at ng): its
         // previous regime, then the new one (regime_row_into).
         std::vector<RegimeFlags> regime_row;
-        // The thread's block of update rows [block_j0, block_j1) and the box's rows
-        // [box_j0, box_j1): which new regime rows are the thread's to store, and which
-        // must wait (keep_regime_row).
-        int block_j0 = 0, block_j1 = 0, box_j0 = 0, box_j1 = 0;
-        // New regime rows that must wait until every block is done: rows held_rows[q]
-        // at held_regime[q * stride], columns [held_i0, held_i1).
+        // The thread's block of update rows [block_j0, block_j1): which new regime rows
+        // are the thread's to store, and which must wait (keep_regime_row).
+        int block_j0 = 0, block_j1 = 0;
+        // New regime rows that must wait until every block is done: row held_rows[q] at
+        // held_regime[q * stride] (column 0 at ng), the per-cell stage's columns.
         std::vector<RegimeFlags> held_regime;
         std::vector<int> held_rows;
-        int held_i0 = 0, held_i1 = 0;
         std::vector<double> row_h, row_hu, row_hv, row_u, row_v,
             row_a;  // one row: the y-predictor's scratch (row_a: celerity in x)
         // Rows computed so far of each stage (end, exclusive), valid while the next
