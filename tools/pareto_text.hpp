@@ -39,7 +39,7 @@ The presets (`--quality`, include/avalanche/app/quality_preset.hpp) are stated a
 the chute with a 0.5 m base cell: `draft` doubles the cell size and the Courant number
 and advects once per step (SLS), `standard` is the default (the paper's scheme and
 Courant number 0.2, L S L), `fine` halves the cell size at Courant 0.2 with SLS. On the
-chute, draft costs well under a tenth of standard (0.06-0.07 in the last runs of the
+chute, draft costs under a tenth of standard (0.06-0.09 in the last runs of the
 study: the CPU times of these short runs are noisy) for 1.25x its deposit error (runout
 1.09 m off, about one of its 1 m cells; 0.09 m until a front's dry neighbours stopped
 counting as cells at rest in the regime rule, 2026-12-02, sixth session); fine costs about 3x for 0.7x the deposit error and about half its

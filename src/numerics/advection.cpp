@@ -142,6 +142,8 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
         in.sy_ss = terrain_.sy.row(jmm);
         in.sy_nn = terrain_.sy.row(jpp);
     }
+    // The first-order scheme confirms a compression at both scales (regime_lane says why).
+    in.confirm_at_both_scales = numerics_.scheme == Scheme::godunov;
     regime_row(in, row, h_min_, rest_speed, ia, ib, -ng, grid_.nx + ng - 1);
 }
 

@@ -132,7 +132,7 @@ namespace {
 // differences of velocities are compared multiplied out by both (positive) depths, so
 // that no division is needed. Metric: the DEM frame, whose velocities are horizontal;
 // the rest test takes the along-surface component u sqrt(1 + s_x^2), v sqrt(1 + s_y^2).
-template <bool Metric>
+template <bool Metric, bool Both>
 AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime, double hmin,
                                   double rest2, int i, int im, int ip, int imm, int ipp) {
     // Whether the velocity does not fall from a to b: b - a >= 0 up to a relative
@@ -177,6 +177,15 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
     // (Taking it for active there, as the rule did until 2026-12-02, let a decelerating
     // deposit, whose small velocities make such cells common, spread less and less as
     // the cells got smaller; taking it for passive grew the patterns again.)
+    // Both: the first-order scheme's rule (RegimeRowInput::confirm_at_both_scales), which
+    // needs both confirmations, the one-sided differences and the four-cell difference.
+    // Its profiles are smeared over more cells, and at a smeared edge the velocity
+    // wiggles over a few cells, which one of the two scales takes for a compression:
+    // Godunov's cap released from rest failed on 0.0125 m cells (E1 0.24) with either
+    // confirmation, and converges at first order with both. WAF keeps either: with both,
+    // the compressions of its decelerating deposits that one scale confirms were left
+    // active and its fine deposits came out shorter and steeper (docs/verification.md,
+    // finding 2).
     const auto q_of = [hmin](double hh, double q) { return is_wet(hh, hmin) ? q : 0.0; };
     const auto d_of = [hmin](double hh) { return is_wet(hh, hmin) ? hh : 1.0; };
     const auto m_of = [](const double* slope, int k) {
@@ -202,10 +211,10 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
         const double Wrr = w_of(rr.h);
         // 1 or 0 each.
         const double central = extends(Ql, Dl, Rl, Wl, Qr, Dr, Rr, Wr);
-        const double confirmed =
-            std::max((1.0 - extends(Ql, Dl, Rl, Wl, Qc, Dc, Rc, Wc)) *
-                         (1.0 - extends(Qc, Dc, Rc, Wc, Qr, Dr, Rr, Wr)),
-                     1.0 - extends(Qll, Dll, Rll, Wll, Qrr, Drr, Rrr, Wrr));
+        const double one_sided = (1.0 - extends(Ql, Dl, Rl, Wl, Qc, Dc, Rc, Wc)) *
+                                 (1.0 - extends(Qc, Dc, Rc, Wc, Qr, Dr, Rr, Wr));
+        const double four_cells = 1.0 - extends(Qll, Dll, Rll, Wll, Qrr, Drr, Rrr, Wrr);
+        const double confirmed = Both ? one_sided * four_cells : std::max(one_sided, four_cells);
         return std::max(central, (1.0 - confirmed) * was_active);
     };
     const double hh = in.h[i];
@@ -226,7 +235,7 @@ AVALANCHE_INLINE void regime_lane(const RegimeRowInput& in, RegimeFlags* regime,
 // Without tree-PRE: GCC 12 otherwise carries loads of one cell's neighbours over to the
 // next cell, a loop-carried value its vectoriser rejects ("unknown def-use cycle"), and
 // the loop stayed scalar: 10.6-29 ns per cell against 3.5 (bench_row_kernels).
-template <bool Metric>
+template <bool Metric, bool Both>
 __attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void regime_row_clone(
     const RegimeRowInput& input, RegimeFlags* regime, double h_min, double rest_speed, int i0,
     int i1, int lo, int hi) {
@@ -239,10 +248,10 @@ __attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void regime_row_c
     const int a = std::min(std::max(i0, lo + 2), i1), e = std::max(std::min(i1, hi - 1), a);
 #pragma omp simd
     for (int i = a; i < e; ++i)
-        regime_lane<Metric>(in, regime, h_min, rest2, i, i - 1, i + 1, i - 2, i + 2);
+        regime_lane<Metric, Both>(in, regime, h_min, rest2, i, i - 1, i + 1, i - 2, i + 2);
     const auto clamped = [&](int i) {
-        regime_lane<Metric>(in, regime, h_min, rest2, i, std::max(i - 1, lo), std::min(i + 1, hi),
-                            std::max(i - 2, lo), std::min(i + 2, hi));
+        regime_lane<Metric, Both>(in, regime, h_min, rest2, i, std::max(i - 1, lo),
+                                  std::min(i + 1, hi), std::max(i - 2, lo), std::min(i + 2, hi));
     };
     for (int i = i0; i < a; ++i) clamped(i);
     for (int i = e; i < i1; ++i) clamped(i);
@@ -252,10 +261,17 @@ __attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void regime_row_c
 
 void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, double rest_speed,
                 int i0, int i1, int lo, int hi) noexcept {
-    if (in.sx != nullptr)
-        regime_row_clone<true>(in, regime, h_min, rest_speed, i0, i1, lo, hi);
-    else
-        regime_row_clone<false>(in, regime, h_min, rest_speed, i0, i1, lo, hi);
+    const bool metric = in.sx != nullptr;
+    if (in.confirm_at_both_scales) {
+        if (metric)
+            regime_row_clone<true, true>(in, regime, h_min, rest_speed, i0, i1, lo, hi);
+        else
+            regime_row_clone<false, true>(in, regime, h_min, rest_speed, i0, i1, lo, hi);
+    } else if (metric) {
+        regime_row_clone<true, false>(in, regime, h_min, rest_speed, i0, i1, lo, hi);
+    } else {
+        regime_row_clone<false, false>(in, regime, h_min, rest_speed, i0, i1, lo, hi);
+    }
 }
 
 // ---------------------------------------------------------------- pressure row

@@ -304,7 +304,7 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
     std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
     const int w = 43, ng = 2;  // columns -2 .. w - 3 with the padding clamp at both ends
     const double h_min = 1e-3, rest_speed = 0.5;
-    long passive = 0, active = 0, kept = 0, reset = 0, at_rest = 0, with_dry = 0;
+    long passive = 0, active = 0, kept = 0, reset = 0, at_rest = 0, with_dry = 0, one_scale = 0;
     for (int trial = 0; trial < 40; ++trial) {
         std::vector<double> h(5 * static_cast<std::size_t>(w)), hu(h.size()), hv(h.size());
         for (std::size_t k = 0; k < h.size(); ++k) {
@@ -319,8 +319,10 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
         std::vector<RegimeFlags> before(static_cast<std::size_t>(w));
         for (auto& r : before) r = static_cast<RegimeFlags>(4.0 * unit(rng));
         std::vector<RegimeFlags> regime = before;
-        // Odd trials in the DEM frame: surface gradients up to 2 (63 deg).
+        // Odd trials in the DEM frame: surface gradients up to 2 (63 deg); trials 2, 3
+        // of every four confirm a compression at both scales (the first-order scheme).
         const bool metric = trial % 2 == 1;
+        const bool both = trial % 4 >= 2;
         std::vector<double> sx(h.size(), 0.0), sy(h.size(), 0.0);
         if (metric)
             for (std::size_t k = 0; k < h.size(); ++k) {
@@ -339,6 +341,7 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
             in.sy_ss = col0(sy, 0);
             in.sy_nn = col0(sy, 4);
         }
+        in.confirm_at_both_scales = both;
         const int lo = -ng, hi = w - ng - 1;
         regime_row(in, regime.data() + ng, h_min, rest_speed, lo, hi + 1, lo, hi);
         // The reference: a velocity is (momentum, depth), at rest (0, 1) where thin or
@@ -366,8 +369,10 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
         const auto next = [&](bool was, int ll, int l, int c, int r, int rr,
                               const std::vector<double>& q, const std::vector<double>& slope) {
             if (extends(l, r, q, slope)) return true;
-            const bool confirmed = (!extends(l, c, q, slope) && !extends(c, r, q, slope)) ||
-                                   !extends(ll, rr, q, slope);
+            const bool one_sided = !extends(l, c, q, slope) && !extends(c, r, q, slope);
+            const bool four_cells = !extends(ll, rr, q, slope);
+            const bool confirmed = both ? one_sided && four_cells : one_sided || four_cells;
+            if (one_sided != four_cells) ++one_scale;
             if (!confirmed) ++kept;
             return !confirmed && was;
         };
@@ -396,6 +401,7 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
     EXPECT_GT(reset, 50);
     EXPECT_GT(at_rest, 100);  // falling differences that the rest speed cancels
     EXPECT_GT(with_dry, 100);  // differences with a thin or dry cell
+    EXPECT_GT(one_scale, 100);  // compressions only one scale confirms: the modes differ
 }
 
 TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
@@ -409,7 +415,9 @@ TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
     //  - inside the falling stretch: central and both one-sided differences negative:
     //    passive;
     //  - at the stretch's two ends: central -0.1, one-sided differences of both signs,
-    //    over four cells -0.2: passive (a compression the one-sided test alone misses);
+    //    over four cells -0.2: passive (a compression the one-sided test alone misses),
+    //    but where both scales must confirm (the first-order scheme's rule) it keeps the
+    //    regime it had;
     //  - every other cell: central difference positive: active, whatever it was;
     //  - a dry cell: back to both active;
     //  - the cells beside it: a difference with a dry cell extends (the edge of a flow
@@ -432,11 +440,13 @@ TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
     h[static_cast<std::size_t>(2 * w + dry)] = 0.0;
     hu[static_cast<std::size_t>(2 * w + dry)] = 0.0;
     const auto col0 = [&](std::vector<double>& f, int row) { return f.data() + row * w + ng; };
-    const RegimeRowInput in{col0(h, 2),  col0(hu, 2), col0(hv, 2), col0(h, 1),
-                            col0(hv, 1), col0(h, 3),  col0(hv, 3), col0(h, 0),
-                            col0(hv, 0), col0(h, 4),  col0(hv, 4)};
+    RegimeRowInput in{col0(h, 2),  col0(hu, 2), col0(hv, 2), col0(h, 1),
+                      col0(hv, 1), col0(h, 3),  col0(hv, 3), col0(h, 0),
+                      col0(hv, 0), col0(h, 4),  col0(hv, 4)};
     const int lo = -ng, hi = w - ng - 1;
+    for (const bool both : {false, true})
     for (const RegimeFlags was : {kRegimeAtStart, kRegimeYActive}) {  // x active, x passive
+        in.confirm_at_both_scales = both;
         std::vector<RegimeFlags> regime(static_cast<std::size_t>(w), was);
         regime_row(in, regime.data() + ng, 1e-3, 0.0, lo, hi + 1, lo, hi);
         for (int c = 2; c + 2 < w; ++c) {  // the end columns see clamped differences
@@ -449,10 +459,12 @@ TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {
                 EXPECT_EQ(got, kRegimeAtStart) << "cell " << c << " beside the dry one";
                 continue;
             }
-            const bool passive = (c >= fall0 && c <= fall1) ||
-                                 (c == slow - 1 && (was & kRegimeXActive) == 0);
+            const bool end = c == fall0 || c == fall1;
+            const bool kept = c == slow - 1 || (both && end);
+            const bool passive = (c > fall0 && c < fall1) || (end && !both) ||
+                                 (kept && (was & kRegimeXActive) == 0);
             EXPECT_EQ(got, passive ? kRegimeYActive : kRegimeAtStart)
-                << "cell " << c << ", was " << int{was};
+                << "cell " << c << ", was " << int{was} << (both ? ", both scales" : "");
         }
     }
     // The cases that tell the rules apart: the central difference alone is negative before

@@ -64,13 +64,17 @@ struct RegimeRowInput {
     const double *h_ss, *hv_ss, *h_nn, *hv_nn;
     const double *sx = nullptr, *sy = nullptr;
     const double *sy_s = nullptr, *sy_n = nullptr, *sy_ss = nullptr, *sy_nn = nullptr;
+    // Confirm a compression at both scales, not at either: the first-order scheme's
+    // rule (regime_lane says why).
+    bool confirm_at_both_scales = false;
 };
 
 // Updates the regime of cells i0 .. i1 - 1 of one row in place (cell_rows.cpp,
 // regime_lane): passive where the central velocity difference is negative and a second
 // scale confirms it (both one-sided differences negative, or the difference over four
-// cells); active where the central difference is not negative; otherwise (a central
-// compression that nothing confirms) the cell keeps the regime it had. Two velocities
+// cells; both of these with in.confirm_at_both_scales, the first-order scheme's rule);
+// active where the central difference is not negative; otherwise (a central
+// compression that is not confirmed) the cell keeps the regime it had. Two velocities
 // whose along-surface components are both at most rest_speed count as equal (their
 // difference vanishes, so it extends): the stepper passes tan(delta) g tau / 2, below
 // which a velocity is the splitting's residue in a deposit at rest (docs/numerics.md,
