@@ -121,6 +121,61 @@ double cfl_rate_row(const double* h, const double* hu, const double* hv, const d
     return cfl_rate_clone(h, hu, hv, px, py, kx, ky, dx, dy, h_min, i0, i1);
 }
 
+// ---------------------------------------------------------------- state scan
+
+namespace {
+
+constexpr int kScanLanes = 8;  // fixed, not the vector width: the sum's bits do not depend on it
+
+// Whether the time loop's scan rejects a cell: a non-finite value or a negative depth.
+AVALANCHE_INLINE bool bad_cell(double h, double hu, double hv) {
+    constexpr double kMax = std::numeric_limits<double>::max();
+    // Ordered comparisons: false for NaN, so a NaN anywhere makes the cell bad.
+    const bool ok = (h >= 0.0) & (h <= kMax) & (std::abs(hu) <= kMax) & (std::abs(hv) <= kMax);
+    return !ok;
+}
+
+AVALANCHE_SIMD_CLONES StateRowScan scan_clone(const double* __restrict h,
+                                              const double* __restrict hu,
+                                              const double* __restrict hv, int i0, int i1) {
+    double energy[kScanLanes] = {}, bad[kScanLanes] = {}, moving[kScanLanes] = {};
+    const auto cell = [&](int l, int i) __attribute__((always_inline)) {
+        const double hh = h[i], qx = hu[i], qy = hv[i];
+        const double e = (qx * qx + qy * qy) / hh;  // 0 / 0 on a dry cell, discarded
+        energy[l] += hh > 0.0 ? e : 0.0;
+        bad[l] += bad_cell(hh, qx, qy) ? 1.0 : 0.0;
+        moving[l] += (qx != 0.0) | (qy != 0.0) ? 1.0 : 0.0;
+    };
+    const int whole = i0 + (i1 - i0) / kScanLanes * kScanLanes;
+    for (int a = i0; a < whole; a += kScanLanes) {
+#pragma omp simd
+        for (int l = 0; l < kScanLanes; ++l) cell(l, a + l);
+    }
+    for (int i = whole; i < i1; ++i) cell(i - whole, i);
+    StateRowScan r;
+    double any_bad = 0.0, any_moving = 0.0;
+    for (int l = 0; l < kScanLanes; ++l) {
+        r.twice_kinetic += energy[l];
+        any_bad += bad[l];
+        any_moving += moving[l];
+    }
+    r.moving = any_moving != 0.0;
+    if (any_bad != 0.0)
+        for (int i = i0; i < i1; ++i)
+            if (bad_cell(h[i], hu[i], hv[i])) {
+                r.first_bad = i;
+                break;
+            }
+    return r;
+}
+
+}  // namespace
+
+StateRowScan state_scan_row(const double* h, const double* hu, const double* hv, int i0,
+                            int i1) noexcept {
+    return scan_clone(h, hu, hv, i0, i1);
+}
+
 // ---------------------------------------------------------------- regime row
 
 namespace {

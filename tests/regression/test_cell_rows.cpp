@@ -159,3 +159,63 @@ TEST(CellRows, CflRateRowIsTheScalarMaximum) {
                            1.0, 1e-4, 0, 17),
               0.0);
 }
+
+// The time loop's row scan (state_scan_row): its energy is the sum of (hu^2 + hv^2) / h
+// over the cells with h > 0 in the grouping cell_rows.hpp defines (cell i0 + 8 k + l
+// into partial sum l, the partial sums added in order), bit for bit whatever the
+// vector width, and within round-off of a long double sum; it finds the first bad cell
+// wherever it lies in a group of eight or in the row's tail.
+TEST(CellRows, StateScanRowSumsInItsFixedGroupingAndNamesTheFirstBadCell) {
+    std::mt19937_64 rng(20261203);
+    for (int trial = 0; trial < 60; ++trial) {
+        const int i0 = trial % 9, n = trial < 50 ? trial : 1000 + trial;
+        const Row r = random_row(rng, i0 + n + 3);
+        double partial[8] = {};
+        long double exact = 0.0L;
+        bool moving = false;
+        for (int i = i0; i < i0 + n; ++i) {
+            const double hh = r.h[i], qx = r.hu[i], qy = r.hv[i];
+            if (hh > 0.0) {
+                partial[(i - i0) % 8] += (qx * qx + qy * qy) / hh;
+                exact += (static_cast<long double>(qx) * qx + static_cast<long double>(qy) * qy) / hh;
+            }
+            moving = moving || qx != 0.0 || qy != 0.0;
+        }
+        double grouped = 0.0;
+        for (const double p : partial) grouped += p;
+        const StateRowScan got =
+            state_scan_row(r.h.data(), r.hu.data(), r.hv.data(), i0, i0 + n);
+        ASSERT_TRUE(same_bits(grouped, got.twice_kinetic))
+            << "trial " << trial << ": grouped " << grouped << " row " << got.twice_kinetic;
+        EXPECT_NEAR(got.twice_kinetic, static_cast<double>(exact),
+                    1e-15 * n * static_cast<double>(exact));
+        EXPECT_EQ(got.moving, moving);
+        EXPECT_EQ(got.first_bad, -1);
+    }
+
+    // The first bad cell at every position of a 21-cell row (two groups and a tail),
+    // with a second bad cell after it; a row at rest but for one cell.
+    constexpr int n = 21, i0 = 2;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int p = i0; p < i0 + n; ++p) {
+        for (int kind = 0; kind < 5; ++kind) {
+            std::vector<double> h(n + 4, 1.0), hu(n + 4, 0.0), hv(n + 4, 0.0);
+            h[i0] = -0.0;  // a negative zero is no negative depth
+            h[i0 + 1] = 0.0;
+            double* field[] = {h.data(), hu.data(), hv.data(), h.data(), hv.data()};
+            const double value[] = {nan, inf, nan, -1e-300, -inf};
+            field[kind][p] = value[kind];
+            if (p + 3 < i0 + n) h[p + 3] = -1.0;
+            const StateRowScan got = state_scan_row(h.data(), hu.data(), hv.data(), i0, i0 + n);
+            EXPECT_EQ(got.first_bad, p) << "kind " << kind;
+        }
+        std::vector<double> h(n + 4, 1.0), hu(n + 4, 0.0), hv(n + 4, 0.0);
+        EXPECT_FALSE(state_scan_row(h.data(), hu.data(), hv.data(), i0, i0 + n).moving);
+        hv[p] = -1e-310;  // subnormal: still moving
+        const StateRowScan got = state_scan_row(h.data(), hu.data(), hv.data(), i0, i0 + n);
+        EXPECT_TRUE(got.moving) << p;
+        EXPECT_EQ(got.first_bad, -1);
+        EXPECT_EQ(got.twice_kinetic, 1e-310 * 1e-310);  // underflows to 0
+    }
+}

@@ -59,8 +59,8 @@ struct StepScan {
 // One pass over the box after a step: throws NumericalError naming the first
 // non-finite or negative cell in row-major order, else returns the kinetic energy and
 // whether everything is at rest. Large boxes are scanned by all OpenMP threads; the
-// result does not depend on their number (kinetic energy: one long double sum per
-// row, rows added in order).
+// result does not depend on their number (kinetic energy: one sum per row with a fixed
+// grouping of its cells, state_scan_row; the rows added in order in long double).
 StepScan scan_state(const State& s, const Grid& g, const ActiveBox& box, double t);
 
 // Everything the time loop carries from one step to the next, besides the state and
