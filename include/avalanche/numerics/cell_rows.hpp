@@ -1,9 +1,10 @@
 #pragma once
 // Per-cell kernels of one grid row, written for the vector units like the face
-// kernels (face_flux_rows.hpp): the point-wise sources, the CFL rate and the
-// advection's per-cell stage. Each is the
-// stepper's scalar loop body with its branches turned into selections, so the results
-// are bitwise those of the scalar code (tests/regression/test_cell_rows.cpp).
+// kernels (face_flux_rows.hpp): the point-wise sources, the CFL rate, the advection's
+// per-cell stage and the time loop's state scan. Each but the scan is the stepper's
+// scalar loop body with its branches turned into selections, so the results are
+// bitwise those of the scalar code (tests/regression/test_cell_rows.cpp); the scan
+// defines its own order of summation (StateRowScan).
 // Pointers address element 0 of the row; cells i0 .. i1 - 1 are processed.
 #include <cstdint>
 #include <limits>
