@@ -17,6 +17,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "avalanche/numerics/cell_rows.hpp"
@@ -162,6 +163,52 @@ void bm_regime_row(benchmark::State& state) {
     state.SetLabel(in.confirm_at_both_scales ? "per cell, both scales" : "per cell");
 }
 BENCHMARK(bm_regime_row)->Arg(0)->Arg(1)->ComputeStatistics("min", min_of);
+
+// The regime stage as the stepper runs it, per row: the terms of one new row and the
+// regimes from the terms (the rows around it computed once, as the stepper keeps them),
+// in the DEM frame. First argument: 1 for the first-order scheme's rule. Second: 0 the
+// layer's random velocities (some blocks of cells decided by their central differences
+// alone, most not), 1 a flow whose velocity falls in x from cell to cell (every cell
+// compresses: no block decided), 2 a uniform flow (every block decided, as on case (a)).
+void bm_regime_stage(benchmark::State& state) {
+    Layer w;
+    for (int r = -1; r <= 1; ++r)
+        for (int i = -kPad; i < kRow + kPad; ++i) {
+            if (state.range(1) == 1) w.hu.at(r)[i] = w.h.at(r)[i] * (20.0 - 0.01 * i);
+            if (state.range(1) == 2) {
+                w.hu.at(r)[i] = w.h.at(r)[i] * 5.0;
+                w.hv.at(r)[i] = w.h.at(r)[i] * 1.0;
+            }
+        }
+    std::vector<RegimeFlags> regime(static_cast<std::size_t>(kRow + 2 * kPad), kRegimeAtStart);
+    RegimeRowInput in{w.h.mid(),  w.hu.mid(),  w.hv.mid(),  w.h.at(-1), w.hv.at(-1),
+                      w.h.at(1),  w.hv.at(1),  w.h.at(-1),  w.hv.at(-1), w.h.at(1),
+                      w.hv.at(1)};  // rows -/+ 2 stand in as -/+ 1
+    in.sx = w.sx.mid();
+    in.sy = w.sy.mid();
+    in.sy_s = in.sy_ss = w.sy.at(-1);
+    in.sy_n = in.sy_nn = w.sy.at(1);
+    in.confirm_at_both_scales = state.range(0) != 0;
+    Rows wet, still_x, still_y, scratch;
+    const double h_min = 1e-3, rest = 0.05;
+    for (int r = -1; r <= 1; ++r)
+        regime_terms_row(w.h.at(r), w.hu.at(r), w.hv.at(r), w.sx.at(r), w.sy.at(r), h_min, rest,
+                         {wet.at(r), still_x.at(r), still_y.at(r)}, -2, kRow + 2);
+    const RegimeRowTerms t{wet.mid(),      wet.at(-1),     wet.at(1),     wet.at(-1),
+                           wet.at(1),      still_x.mid(),  still_y.mid(), still_y.at(-1),
+                           still_y.at(1),  still_y.at(-1), still_y.at(1)};
+    run_per_item(state, kRow, [&] {
+        // The new row's terms (written to scratch rows nothing reads).
+        regime_terms_row(w.h.at(1), w.hu.at(1), w.hv.at(1), w.sx.at(1), w.sy.at(1), h_min, rest,
+                         {scratch.at(-1), scratch.at(0), scratch.at(1)}, -2, kRow + 2);
+        regime_row_from_terms(in, t, regime.data() + kPad, 0, kRow, -kPad, kRow + kPad - 1);
+    });
+    state.SetLabel(std::string("per cell, DEM frame") + (in.confirm_at_both_scales ? ", both scales" : "") +
+                   (state.range(1) == 0 ? ", random velocities"
+                    : state.range(1) == 1 ? ", compressing"
+                                          : ", uniform flow"));
+}
+BENCHMARK(bm_regime_stage)->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 2})->ComputeStatistics("min", min_of);
 
 void bm_pressure_row(benchmark::State& state) {
     Layer w;

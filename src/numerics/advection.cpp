@@ -43,6 +43,8 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);
     regime_row.assign(static_cast<std::size_t>(stride), kRegimeAtStart);
+    for (auto* a : {&term_wet, &term_still_x, &term_still_y})
+        a->assign(static_cast<std::size_t>(stride) * kRegimeRingRows, 0.0);
     held_regime.assign(static_cast<std::size_t>(stride) * 2 * kRegimeHeldRows, kRegimeAtStart);
     held_rows.reserve(2 * kRegimeHeldRows);
     for (WaitingRows& wr : waiting) {
@@ -124,27 +126,39 @@ ActiveBox Stepper::per_cell_box(const ActiveBox& b) const {
 
 void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, int ib,
                               StripBuffers& w) const {
-    const int ng = kGhostLayers;
+    const int ng = kGhostLayers, lo = -ng, hi = grid_.nx + ng - 1, top = grid_.ny + ng - 1;
+    const auto clamped = [&](int j) { return std::clamp(j, -ng, top); };  // rows, at the padding
     RegimeFlags* row = w.regime_row.data() + ng;  // column 0
     // The row's previous regime, which regime_row replaces cell by cell.
     std::copy_n(regime_.data() + s.h.index(ia, r), ib - ia, row + ia);
-    // Differences across rows, clamped at the padding.
-    const int jm = std::max(r - 1, -ng), jp = std::min(r + 1, grid_.ny + ng - 1);
-    const int jmm = std::max(r - 2, -ng), jpp = std::min(r + 2, grid_.ny + ng - 1);
+    // The terms of rows r - 2 .. r + 2 (over the columns row r's x-differences read)
+    // that the ring does not hold yet. The regime rows of a block of strips come in
+    // ascending order, so the ring holds the rest; a new block starts with terms_end at
+    // INT_MIN (advect_strip). None of these state rows has been written by a strip yet
+    // (advect_strip), so the terms kept are the ones the rows would give now.
+    const int c0 = std::max(ia - 2, lo), c1 = std::min(ib + 2, hi + 1);
+    const bool metric = terrain_.has_metric;
+    w.terms_end = std::max(w.terms_end, clamped(r - 2));
+    for (int j = w.terms_end; j <= clamped(r + 2); ++j)
+        regime_terms_row(s.h.row(j), s.hu.row(j), s.hv.row(j), metric ? terrain_.sx.row(j) : nullptr,
+                         metric ? terrain_.sy.row(j) : nullptr, h_min_, rest_speed,
+                         {w.ring_row(w.term_wet, j), w.ring_row(w.term_still_x, j),
+                          w.ring_row(w.term_still_y, j)},
+                         c0, c1);
+    w.terms_end = std::max(w.terms_end, clamped(r + 2) + 1);
+
+    const int jm = clamped(r - 1), jp = clamped(r + 1), jmm = clamped(r - 2), jpp = clamped(r + 2);
     RegimeRowInput in{s.h.row(r),    s.hu.row(r), s.hv.row(r),  s.h.row(jm),
                       s.hv.row(jm),  s.h.row(jp), s.hv.row(jp), s.h.row(jmm),
                       s.hv.row(jmm), s.h.row(jpp), s.hv.row(jpp)};
-    if (terrain_.has_metric) {
-        in.sx = terrain_.sx.row(r);
-        in.sy = terrain_.sy.row(r);
-        in.sy_s = terrain_.sy.row(jm);
-        in.sy_n = terrain_.sy.row(jp);
-        in.sy_ss = terrain_.sy.row(jmm);
-        in.sy_nn = terrain_.sy.row(jpp);
-    }
-    // The first-order scheme confirms a compression at both scales (regime_lane says why).
+    // The first-order scheme confirms a compression at both scales (regime_rows.cpp says why).
     in.confirm_at_both_scales = numerics_.scheme == Scheme::godunov;
-    regime_row(in, row, h_min_, rest_speed, ia, ib, -ng, grid_.nx + ng - 1);
+    const auto wet = [&](int j) { return w.ring_row(w.term_wet, j); };
+    const auto still_y = [&](int j) { return w.ring_row(w.term_still_y, j); };
+    const RegimeRowTerms t{wet(r),     wet(jm),     wet(jp),     wet(jmm),     wet(jpp),
+                           w.ring_row(w.term_still_x, r),
+                           still_y(r), still_y(jm), still_y(jp), still_y(jmm), still_y(jpp)};
+    regime_row_from_terms(in, t, row, ia, ib, lo, hi);
 }
 
 void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffers& w) {
@@ -185,7 +199,7 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
         w.carry_rows(J - 4 - w.base, waf, pc0, pc1);
     } else {
         w.vel_end = w.p_end = w.yfo_end = w.xf_end = w.xp_end = w.yf_end = w.fac_end =
-            std::numeric_limits<int>::min();
+            w.terms_end = std::numeric_limits<int>::min();
     }
     w.base = J - 4;
 

@@ -299,16 +299,23 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
 
 TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
     // Five rows (r - 2 .. r + 2) of random depths and momenta, random previous regimes;
-    // the reference is the rule of cell_rows.hpp (regime_row) written as a plain loop.
+    // the reference is the rule of regime_rows.hpp (regime_row) written as a plain loop.
     std::mt19937_64 rng(20261202);
     std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
-    const int w = 43, ng = 2;  // columns -2 .. w - 3 with the padding clamp at both ends
+    const int w = 75, ng = 2;  // columns -2 .. w - 3 with the padding clamp at both ends
     const double h_min = 1e-3, rest_speed = 0.5;
     long passive = 0, active = 0, kept = 0, reset = 0, at_rest = 0, with_dry = 0, one_scale = 0;
-    for (int trial = 0; trial < 40; ++trial) {
+    // Stretches of 32 cells or more whose central differences all extend in x and y: the
+    // kernel settles blocks of cells inside them without the second scales, and the
+    // cells next to them with.
+    long settled_stretches = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        // Trials from 40 on: a uniform flow (every difference extends) with a few cells
+        // of their own, so that settled blocks alternate with unsettled ones.
+        const bool uniform = trial >= 40;
         std::vector<double> h(5 * static_cast<std::size_t>(w)), hu(h.size()), hv(h.size());
         for (std::size_t k = 0; k < h.size(); ++k) {
-            const double kind = unit(rng);
+            const double kind = !uniform || unit(rng) < 0.03 ? unit(rng) : 0.86 + 0.14 * unit(rng);
             h[k] = kind < 0.1 ? 0.0 : kind < 0.15 ? 0.5 * h_min : 3.0 * unit(rng);
             // Some neighbours move alike (a vanishing difference extends), some are
             // slower than the rest speed (a deposit's residue).
@@ -376,9 +383,16 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
             if (!confirmed) ++kept;
             return !confirmed && was;
         };
+        int stretch = 0;
         for (int i = lo; i <= hi; ++i) {
             const int k = 2 * w + i + ng;
             const auto col = [&](int j) { return 2 * w + std::clamp(j, lo, hi) + ng; };
+            const long dry_before = with_dry, rest_before = at_rest;
+            const bool central = extends(col(i - 1), col(i + 1), hu, sx) && extends(k - w, k + w, hv, sy);
+            with_dry = dry_before;  // counted below
+            at_rest = rest_before;
+            stretch = central ? stretch + 1 : 0;
+            if (stretch == 32) ++settled_stretches;
             const RegimeFlags was = before[static_cast<std::size_t>(i + ng)];
             RegimeFlags ref = kRegimeAtStart;
             if (wet(h[k])) {
@@ -402,6 +416,7 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
     EXPECT_GT(at_rest, 100);  // falling differences that the rest speed cancels
     EXPECT_GT(with_dry, 100);  // differences with a thin or dry cell
     EXPECT_GT(one_scale, 100);  // compressions only one scale confirms: the modes differ
+    EXPECT_GT(settled_stretches, 10);
 }
 
 TEST(UpdateRows, RegimeIsTheCentralDifferenceConfirmedAtASecondScaleElseKept) {

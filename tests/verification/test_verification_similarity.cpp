@@ -106,7 +106,7 @@ TEST(SimilaritySolution, TwoDimensionalGodunov) {
 // central difference of u a pattern of passive cells (k_pass / k_act = 6.6) grew, the
 // cap spread too fast and the error GREW under refinement (WAF E1 = 6e-2, 1.4e-1,
 // 2.6e-1 at dx = 0.2, 0.1, 0.05; L_x 6.2, 6.6, 7.2 m against 5.82). With the central
-// difference confirmed at a second scale (cell_rows.cpp, regime_lane) it converges: measured
+// difference confirmed at a second scale (regime_rows.cpp, next_regime) it converges: measured
 // E1 = 6.4e-3, 2.0e-3, 7.0e-4, L_x within 0.08 % at dx = 0.1 (docs/verification.md,
 // finding 2). Bounds: those of the cap released spreading; order >= 1.2 from dx = 0.1 to
 // 0.05 (measured 1.54).

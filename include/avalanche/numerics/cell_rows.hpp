@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "avalanche/numerics/regime_rows.hpp"
 #include "avalanche/physics/earth_pressure.hpp"
 
 namespace avalanche {
@@ -62,46 +63,6 @@ struct StateRowScan {
 
 StateRowScan state_scan_row(const double* h, const double* hu, const double* hv, int i0,
                             int i1) noexcept;
-
-// The Savage-Hutter regime of a cell, carried from advection to advection (Stepper,
-// regime_row): bit kRegimeXActive set where k_x is active, bit kRegimeYActive where
-// k_y is. A cell starts, and a dry or thin cell restarts, with both active
-// (kRegimeAtStart). Four bytes, not one: with one-byte flags GCC 12 left the AVX-512F
-// clone of regime_row scalar (no 64-lane byte vectors without AVX-512BW).
-using RegimeFlags = std::int32_t;
-inline constexpr RegimeFlags kRegimeXActive = 1, kRegimeYActive = 2;
-inline constexpr RegimeFlags kRegimeAtStart = kRegimeXActive | kRegimeYActive;
-
-// Rows the regime stage reads: the state (depth and momenta) of row r, and the depth
-// and y-momentum of the rows one (s, n) and two (ss, nn) below and above it; in the DEM
-// frame the surface gradient s_x of row r and s_y of the five rows (null in bed-fitted
-// frames: all or none).
-struct RegimeRowInput {
-    const double *h, *hu, *hv;
-    const double *h_s, *hv_s, *h_n, *hv_n;
-    const double *h_ss, *hv_ss, *h_nn, *hv_nn;
-    const double *sx = nullptr, *sy = nullptr;
-    const double *sy_s = nullptr, *sy_n = nullptr, *sy_ss = nullptr, *sy_nn = nullptr;
-    // Confirm a compression at both scales, not at either: the first-order scheme's
-    // rule (regime_lane says why).
-    bool confirm_at_both_scales = false;
-};
-
-// Updates the regime of cells i0 .. i1 - 1 of one row in place (cell_rows.cpp,
-// regime_lane): passive where the central velocity difference is negative and a second
-// scale confirms it (both one-sided differences negative, or the difference over four
-// cells; both of these with in.confirm_at_both_scales, the first-order scheme's rule);
-// active where the central difference is not negative; otherwise (a central
-// compression that is not confirmed) the cell keeps the regime it had. Two velocities
-// whose along-surface components are both at most rest_speed count as equal (their
-// difference vanishes, so it extends): the stepper passes tan(delta) g tau / 2, below
-// which a velocity is the splitting's residue in a deposit at rest (docs/numerics.md,
-// advection step 2). A difference with a thin or dry cell (h < h_min) extends: such a
-// cell has no velocity of its own. Each cell reads only its own previous regime,
-// so rows may be updated in any order and by any thread. The x-differences are clamped
-// to the columns lo and hi. Pointers address column 0.
-void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, double rest_speed,
-                int i0, int i1, int lo, int hi) noexcept;
 
 // Rows the pressure stage reads: the state's depth and velocity quotients of row r
 // (u = hu / h, v = hv / h of every cell, as state_velocity_row computes them), the

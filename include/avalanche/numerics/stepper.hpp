@@ -118,6 +118,19 @@ class Stepper {
         // The regime of the row the pressure stage computes next (column 0 at ng): its
         // previous regime, then the new one (regime_row_into).
         std::vector<RegimeFlags> regime_row;
+        // The regime rule's terms (regime_rows.hpp: wet, still in x, still in y) of the rows
+        // r - 2 .. r + 2 around the next regime row r, in rings of kRegimeRingRows rows
+        // indexed by grid row (ring_row), so that each row's are computed once per block
+        // of strips, not once for each of the five regime rows that read them. Rows
+        // [.., terms_end) are computed (regime_row_into).
+        std::vector<double> term_wet, term_still_x, term_still_y;
+        int terms_end = 0;
+        static constexpr int kRegimeRingRows = 8;
+        // Column 0 of grid row r of a ring.
+        [[nodiscard]] double* ring_row(std::vector<double>& a, int r) const {
+            const int slot = ((r % kRegimeRingRows) + kRegimeRingRows) % kRegimeRingRows;
+            return a.data() + static_cast<std::ptrdiff_t>(slot) * stride + ng;
+        }
         // The thread's block of update rows [block_j0, block_j1): which new regime rows
         // are the thread's to store, and which must wait (keep_regime_row).
         int block_j0 = 0, block_j1 = 0;

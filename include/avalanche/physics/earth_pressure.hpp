@@ -6,7 +6,7 @@
 // Active where the flow extends (du/dx > 0), passive where it compresses; k_y is
 // evaluated with the k_x chosen in the same cell. On the grid: passive where the central
 // difference is negative, confirmed at a second scale; active where it is not negative;
-// otherwise the cell keeps its regime (numerics/cell_rows.cpp, regime_lane).
+// otherwise the cell keeps its regime (numerics/regime_rows.cpp, next_regime).
 #include "avalanche/physics/material.hpp"
 
 namespace avalanche {
