@@ -22,6 +22,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "avalanche/numerics/cell_rows.hpp"
@@ -174,6 +176,14 @@ void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffer
         return;
     }
     const std::size_t q = w.held_rows.size();
+    // A block computes each of its rows' regimes once (its strips carry their rows on),
+    // so it holds at most kRegimeHeldRows rows at each inner end: held_regime's capacity.
+    // Past it the copy below would write beyond the buffer; stop instead.
+    if (q >= 2 * static_cast<std::size_t>(kRegimeHeldRows)) {
+        std::fputs("avalanche-hazard: internal error: more held regime rows than the buffer holds\n",
+                   stderr);
+        std::abort();
+    }
     w.held_rows.push_back(r);
     std::copy_n(row + ia, ib - ia,
                 w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + kGhostLayers + ia);
