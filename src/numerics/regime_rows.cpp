@@ -207,18 +207,17 @@ void regime_row(const RegimeRowInput& in, RegimeFlags* regime, double h_min, dou
     const auto terms_of = [&](int q) {
         return RegimeTermsRow{row(3 * q), row(3 * q + 1), row(3 * q + 2)};
     };
-    const bool metric = in.sx != nullptr;
     // Row r over the columns its x-differences read; the others over [i0, i1). (Their
     // still_x is not read: they take their y-momentum and, in the DEM frame, their s_y
-    // for the x-terms too.)
+    // for the x-terms too; in bed-fitted frames every gradient row is null.)
     regime_terms_row(in.h, in.hu, in.hv, in.sx, in.sy, h_min, rest_speed, terms_of(0),
                      std::max(i0 - 2, lo), std::min(i1 + 2, hi + 1));
     const double* h_rows[4] = {in.h_s, in.h_n, in.h_ss, in.h_nn};
     const double* hv_rows[4] = {in.hv_s, in.hv_n, in.hv_ss, in.hv_nn};
     const double* sy_rows[4] = {in.sy_s, in.sy_n, in.sy_ss, in.sy_nn};
     for (int q = 0; q < 4; ++q)
-        regime_terms_row(h_rows[q], hv_rows[q], hv_rows[q], metric ? sy_rows[q] : nullptr,
-                         metric ? sy_rows[q] : nullptr, h_min, rest_speed, terms_of(q + 1), i0, i1);
+        regime_terms_row(h_rows[q], hv_rows[q], hv_rows[q], sy_rows[q], sy_rows[q], h_min,
+                         rest_speed, terms_of(q + 1), i0, i1);
     const RegimeRowTerms t{row(0), row(3), row(6), row(9),  row(12), row(1),
                            row(2), row(5), row(8), row(11), row(14)};
     regime_row_from_terms(in, t, regime, i0, i1, lo, hi);

@@ -357,10 +357,11 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
         // a difference with a thin or dry cell extends.
         const auto wet = [h_min](double d) { return d >= h_min && d > 0.0; };
         const double rest2 = rest_speed * rest_speed;
+        // count: add to the tallies of the cases seen (not for the settled-stretch probe).
         const auto extends = [&](int ka, int kb, const std::vector<double>& q,
-                                 const std::vector<double>& slope) {
+                                 const std::vector<double>& slope, bool count = true) {
             if (!wet(h[ka]) || !wet(h[kb])) {
-                ++with_dry;
+                if (count) ++with_dry;
                 return true;
             }
             const double qa = wet(h[ka]) ? q[ka] : 0.0, da = wet(h[ka]) ? h[ka] : 1.0;
@@ -369,7 +370,7 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
             const double x = qa * db, y = qb * da;
             const bool falls = y - x < -1e-12 * std::max(std::abs(x), std::abs(y));
             const bool rest = qa * qa * ma <= rest2 * (da * da) && qb * qb * mb <= rest2 * (db * db);
-            if (falls && rest) ++at_rest;
+            if (count && falls && rest) ++at_rest;
             return !falls || rest;
         };
         // Cells ll, l, c, r, rr (element indices) of one direction.
@@ -387,10 +388,8 @@ TEST(UpdateRows, RegimeRowIsBitwiseTheScalarRule) {
         for (int i = lo; i <= hi; ++i) {
             const int k = 2 * w + i + ng;
             const auto col = [&](int j) { return 2 * w + std::clamp(j, lo, hi) + ng; };
-            const long dry_before = with_dry, rest_before = at_rest;
-            const bool central = extends(col(i - 1), col(i + 1), hu, sx) && extends(k - w, k + w, hv, sy);
-            with_dry = dry_before;  // counted below
-            at_rest = rest_before;
+            const bool central = extends(col(i - 1), col(i + 1), hu, sx, false) &&
+                                 extends(k - w, k + w, hv, sy, false);
             stretch = central ? stretch + 1 : 0;
             if (stretch == 32) ++settled_stretches;
             const RegimeFlags was = before[static_cast<std::size_t>(i + ng)];
