@@ -12,6 +12,7 @@
 #include <sstream>
 #include <utility>
 
+#include "avalanche/app/phase_times.hpp"
 #include "avalanche/app/prepared_scene.hpp"
 #include "avalanche/app/progress_bar.hpp"
 #include "avalanche/app/scenario_overrides.hpp"
@@ -99,18 +100,32 @@ struct CheckpointArguments {
     std::string resume;     // --resume DIR
 };
 
+// A prepared scene and the wall time its preparation took (the summary's "prepare" phase).
+struct TimedScene {
+    PreparedScene scene;
+    double seconds = 0.0;
+};
+
+TimedScene prepare_timed(const Scenario& scenario) {
+    PhaseTimes clock;
+    PreparedScene scene = prepare_scene(scenario);
+    clock.lap("prepare");
+    return {std::move(scene), clock.total()};
+}
+
 // Runs the scene into `out` and turns an interrupted run into exit code 6.
-int run_scene(PreparedScene&& scene, const Scenario& scenario, const std::string& out,
+int run_scene(TimedScene&& prepared, const Scenario& scenario, const std::string& out,
               const GlobalOptions& global, double checkpoint_interval,
               const CheckpointContents* resume) {
     InterruptGuard interrupt;
     RunOptions options;
+    options.prepare_seconds = prepared.seconds;
     options.out_dir = out;
     options.command_line = global.command_line;
     options.progress = make_progress(!global.quiet && ::isatty(::fileno(stderr)));
     options.checkpoint_interval = checkpoint_interval;
     options.resume = resume;
-    const RunOutcome outcome = execute_scene(std::move(scene), scenario, options);
+    const RunOutcome outcome = execute_scene(std::move(prepared.scene), scenario, options);
     if (!global.quiet) {
         const std::string dir = std::filesystem::path(outcome.summary_path).parent_path().string();
         std::cout << "maps: " << dir
@@ -143,7 +158,7 @@ int execute_new_run(const RunArguments& args, const GlobalOptions& global, doubl
     spdlog::debug("effective configuration: {}", effective_config(scenario).dump());
     set_threads(args.threads);
     prepare_output_folder(args.out, args.overwrite);
-    return run_scene(prepare_scene(scenario), scenario, args.out, global, checkpoint_interval,
+    return run_scene(prepare_timed(scenario), scenario, args.out, global, checkpoint_interval,
                      nullptr);
 }
 
@@ -192,7 +207,7 @@ int execute_resume(const std::string& dir, int threads, const GlobalOptions& glo
                              "; resuming would mix two solvers in one run: start it "
                              "again with --overwrite");
     set_threads(threads > 0 ? threads : checkpoint.info.threads);
-    return run_scene(prepare_scene(scenario), scenario, out, global,
+    return run_scene(prepare_timed(scenario), scenario, out, global,
                      checkpoint.info.checkpoint_interval, &checkpoint);
 }
 

@@ -13,6 +13,7 @@
 #include <omp.h>
 #endif
 
+#include "avalanche/app/phase_times.hpp"
 #include "avalanche/app/prepared_scene.hpp"
 #include "avalanche/app/products.hpp"
 #include "avalanche/app/report_html.hpp"
@@ -108,6 +109,8 @@ std::vector<std::uint8_t> cells_with_material(const State& state, const Grid& g)
 // moved out of it); scene.initial is not read.
 RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
                    const RunOptions& options) {
+    PhaseTimes phases;
+    if (options.prepare_seconds >= 0.0) phases.add("prepare", options.prepare_seconds);
     const std::filesystem::path dir(options.out_dir);
     const double h_min = effective_h_min(s.numerics, initial, scene.terrain);
     const nlohmann::json config = effective_config(s);
@@ -193,6 +196,7 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
     spdlog::info("{}; released {:.6g} m3; h_min {:.3g} m; config {}", scene.description,
                  released_volume, h_min, hash);
     if (const auto caution = numerics_caution(s.numerics, s.material)) spdlog::warn("{}", *caution);
+    phases.lap("setup");
     RunStatistics stats;
     try {
         stats = sim->run();
@@ -204,6 +208,7 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
                                                  : "; no diagnostic checkpoint could be written"));
     }
     sim.reset();
+    phases.lap("simulate");
     const bool complete = stats.end_reason != EndReason::interrupted;
     if (!complete)
         spdlog::info("interrupted: the products below are marked incomplete; continue with "
@@ -226,6 +231,7 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
         stats.relative_mass_error());
 
     results.finish(stats);
+    phases.lap("results");
     const RunoutMetrics runout = compute_runout(scene.grid, scene.terrain, top, maps, s.output,
                                                 scene.horizontal_position, scene.cell_area_m2);
     const ProductInputs products{scene,
@@ -238,6 +244,7 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
                                  hash,
                                  options.command_line};
     const std::vector<std::string> files = write_products(options.out_dir, products);
+    phases.lap("products");
     write_report(options.out_dir, products, files);
     spdlog::info("runout {:.1f} m, travel angle {:.1f} deg, affected area {:.0f} m2; wrote {} product files",
                  runout.runout_length_m, runout.travel_angle_deg, runout.affected_area_m2, files.size() + 1);
@@ -256,6 +263,9 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
     js["crs_wkt"] = scene.crs_wkt;
     js["inputs"] = scene.input_files;
     write_report_html(options.out_dir, products, js);  // from the same numbers as summary.json
+    phases.lap("report");
+    js["performance"]["phases_s"] = phases.to_json();
+    spdlog::info("wall time: {}", phases.describe());
     const std::string summary_path = (dir / "summary.json").string();
     write_file_atomically(summary_path, js.dump(2) + "\n");
     return {stats, results.path(), summary_path};

@@ -135,6 +135,7 @@ inline nlohmann::json comparable_summary(const std::string& path) {
     s.erase("wall_s");
     s.erase("command_line");
     s["performance"].erase("cell_updates_per_s");
+    s["performance"].erase("phases_s");
     return s;
 }
 

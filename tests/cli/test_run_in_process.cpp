@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -34,9 +35,25 @@ TEST(RunInProcess, SummaryHasEveryKeyAndAnExactMassBalance) {
     test::ScratchDir dir("summary");
     const std::string scenario = dir.write("scenario.toml", test::kSmallChute);
     const std::string out = dir.file("out");
+    const auto started = std::chrono::steady_clock::now();
     ASSERT_EQ(run_cli({"avalanche-hazard", "run", "--scenario", scenario, "--out", out, "--quiet"}),
               0);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const auto s = read_json(out + "/summary.json");
+    // The wall time of each phase, in the order they ran; the solver's phase holds the
+    // time loop (wall_s), and all of them fit in the command's own time.
+    const auto& phases = s["performance"]["phases_s"];
+    double sum = 0.0;
+    for (const char* phase : {"prepare", "setup", "simulate", "results", "products", "report"}) {
+        ASSERT_TRUE(phases.contains(phase)) << phase;
+        EXPECT_GE(phases[phase].get<double>(), 0.0) << phase;
+        sum += phases[phase].get<double>();
+    }
+    EXPECT_EQ(phases.size(), 7u);  // the six and the total
+    EXPECT_NEAR(phases["total"].get<double>(), sum, 1e-12 * sum);
+    EXPECT_LE(phases["total"].get<double>(), elapsed);
+    EXPECT_GE(phases["simulate"].get<double>(), s["wall_s"].get<double>());
+    EXPECT_GT(phases["products"].get<double>(), 0.0);
     for (const char* key : {"end_reason", "simulated_time_s", "steps", "wall_s", "performance",
                             "volume", "parameters", "config_hash", "software_version",
                             "source_hash", "command_line", "h_min_m"})

@@ -56,6 +56,9 @@ struct RunOptions {
     double checkpoint_interval = 0.0;
     // Continue from this checkpoint (read_checkpoint) instead of t = 0; null = new run.
     const CheckpointContents* resume = nullptr;
+    // Wall time the caller spent preparing the scene (prepare_scene), reported as the
+    // run's "prepare" phase; negative: not this run's (batch runs share one scene).
+    double prepare_seconds = -1.0;
 };
 
 struct RunOutcome {
