@@ -58,8 +58,9 @@ void write_diagnostic_checkpoint(const std::string& path, const CheckpointInfo& 
 // what is wrong (missing, not HDF5, not a checkpoint, truncated, wrong sizes).
 CheckpointContents read_checkpoint(const std::string& path);
 
-// Hex digest (FNV-1a, 64 bit) of the prepared scene: grid geometry, every terrain
-// field, the initial state, the sink mask and the monitoring-point cells.
+// Hex digest (64 bit: FNV-1a, the grid-sized arrays a word at a time in four lanes) of
+// the prepared scene: grid geometry, every terrain field, the initial state, the sink
+// mask and the monitoring-point cells.
 std::string scene_fingerprint(const Grid& grid, const TerrainFields& terrain, const State& initial,
                               const std::vector<std::uint8_t>& sinks,
                               const std::vector<ProbeLocation>& probes);

@@ -1,0 +1,106 @@
+// The scene fingerprint a resumed run compares (checkpoint_inputs.cpp): equal for equal
+// scenes, different when any one value of any field changes in any bit, at any
+// position of the word-wise lanes.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "avalanche/io/checkpoint_file.hpp"
+#include "avalanche/physics/dem_frame.hpp"
+
+namespace avalanche {
+namespace {
+
+struct Scene {
+    Grid grid;
+    TerrainFields terrain;
+    State initial;
+    std::vector<std::uint8_t> sinks;
+    std::vector<ProbeLocation> probes;
+
+    Scene() {
+        grid.nx = 13;  // the padded rows are not a multiple of the four lanes
+        grid.ny = 7;
+        grid.dx = grid.dy = 2.0;
+        std::vector<double> z(grid.cells());
+        for (int j = 0; j < grid.ny; ++j)
+            for (int i = 0; i < grid.nx; ++i)
+                z[static_cast<std::size_t>(j) * grid.nx + i] = 100.0 - 0.7 * i + 0.01 * i * j;
+        terrain = dem_terrain(grid, z, 9.81);
+        initial = State(grid);
+        initial.h(3, 2) = 1.5;
+        sinks.assign(grid.cells(), 0);
+        probes.push_back({"p", 5.0, 3.0, 2, 1});
+    }
+    [[nodiscard]] std::string fingerprint() const {
+        return scene_fingerprint(grid, terrain, initial, sinks, probes);
+    }
+};
+
+double with_bit_flipped(double v, int bit) {
+    std::uint64_t w;
+    std::memcpy(&w, &v, sizeof w);
+    w ^= std::uint64_t{1} << bit;
+    std::memcpy(&v, &w, sizeof w);
+    return v;
+}
+
+TEST(SceneFingerprint, EqualScenesGiveEqualDigests) {
+    const Scene a, b;
+    EXPECT_EQ(a.fingerprint(), b.fingerprint());
+    EXPECT_EQ(a.fingerprint().size(), 16u);
+}
+
+TEST(SceneFingerprint, EveryBitOfEveryCellOfAFieldCounts) {
+    const Scene reference;
+    const std::string base = reference.fingerprint();
+    Scene s;
+    const int stride = s.terrain.elevation.stride();
+    // Every cell of the padded elevation (each lane position, ghosts included), the
+    // lowest mantissa bit, a middle one and the sign.
+    for (std::size_t k = 0; k < s.terrain.elevation.raw().size(); ++k) {
+        for (const int bit : {0, 31, 63}) {
+            double& v = s.terrain.elevation.raw()[k];
+            const double kept = v;
+            v = with_bit_flipped(kept, bit);
+            EXPECT_NE(s.fingerprint(), base) << "cell " << k % stride << ", " << k / stride << " bit " << bit;
+            v = kept;
+        }
+    }
+    EXPECT_EQ(s.fingerprint(), base);
+}
+
+TEST(SceneFingerprint, EachInputCounts) {
+    const std::string base = Scene().fingerprint();
+    {
+        Scene s;
+        s.initial.hv(7, 4) = 1e-300;
+        EXPECT_NE(s.fingerprint(), base) << "initial state";
+    }
+    {
+        Scene s;
+        s.terrain.gn(12, 6) = with_bit_flipped(s.terrain.gn(12, 6), 0);
+        EXPECT_NE(s.fingerprint(), base) << "a terrain coefficient";
+    }
+    {
+        Scene s;
+        s.sinks[40] = 1;
+        EXPECT_NE(s.fingerprint(), base) << "sink mask";
+    }
+    {
+        Scene s;
+        s.probes[0].j = 2;
+        EXPECT_NE(s.fingerprint(), base) << "monitoring point";
+    }
+    {
+        Scene s;
+        // The order of the fields counts.
+        std::swap(s.terrain.ax, s.terrain.ay);
+        EXPECT_NE(s.fingerprint(), base) << "two fields exchanged";
+    }
+}
+
+}  // namespace
+}  // namespace avalanche
