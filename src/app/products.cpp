@@ -2,7 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <utility>
+#include <vector>
 
 #include "avalanche/gis/dem.hpp"
 #include "avalanche/gis/quicklook.hpp"
@@ -42,42 +46,52 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     const gis::GeoGrid geo{g, in.scene.crs_wkt};
     const OutputParams& out = in.scenario.output;
     const auto& depth = in.maps.max_depth();
-    std::vector<double> elevation = in.scene.terrain.elevation.interior();
-
-    std::vector<double> arrival = in.maps.arrival_time();
-    for (double& a : arrival)
-        if (a == HazardMaps::kNotReached) a = kNodata;
-    std::vector<double> deposit = in.maps.deposit_depth();
-    for (double& v : deposit)
-        if (!(v > 0.0)) v = kNodata;
-    std::vector<double> classes;
-    for (std::uint8_t c : in.maps.hazard_classes()) classes.push_back(c);
+    const std::vector<double> elevation = in.scene.terrain.elevation.interior();
+    // One hillshade under every quick-look.
+    const std::vector<double> shade = gis::hillshade(g, elevation);
 
     const std::string pressure_breaks = "classes: low < " + std::to_string(out.pressure_low_kpa) +
                                         " kPa <= medium < " + std::to_string(out.pressure_high_kpa) +
                                         " kPa <= high";
-    const std::vector<std::pair<MapSpec, std::vector<double>>> maps = {
+    // Each map's values are made when it is written, so that one grid-sized copy at a
+    // time is alive (on a large grid every copy is also first-touched memory).
+    using Values = std::function<std::vector<double>()>;
+    const std::vector<std::pair<MapSpec, Values>> maps = {
         {{"max_depth", "maximum flow depth (bed-normal)", "m", gis::depth_ramp(), gis::SampleType::float32,
           kNodata, true},
-         masked(depth, depth, out.h_threshold)},
+         [&] { return masked(depth, depth, out.h_threshold); }},
         {{"max_velocity", "maximum along-surface speed", "m/s", gis::velocity_ramp()},
-         masked(in.maps.max_speed(), depth, out.h_threshold)},
+         [&] { return masked(in.maps.max_speed(), depth, out.h_threshold); }},
         {{"max_pressure", "maximum impact pressure rho |u|^2", "kPa",
           gis::pressure_ramp({1.0, out.pressure_low_kpa, 10.0, out.pressure_high_kpa, 100.0})},
-         masked(in.maps.max_pressure(), depth, out.h_threshold)},
+         [&] { return masked(in.maps.max_pressure(), depth, out.h_threshold); }},
         {{"arrival_time", "first time the depth reached the hazard threshold", "s",
           gis::arrival_time_ramp(std::max(in.stats.simulated_time, 1e-9))},
-         arrival},
+         [&] {
+             std::vector<double> arrival = in.maps.arrival_time();
+             for (double& a : arrival)
+                 if (a == HazardMaps::kNotReached) a = kNodata;
+             return arrival;
+         }},
         {{"deposit_thickness", "thickness at the end of the run (bed-normal)", "m", gis::depth_ramp(),
           gis::SampleType::float32, kNodata, true},
-         deposit},
+         [&] {
+             std::vector<double> deposit = in.maps.deposit_depth();
+             for (double& v : deposit)
+                 if (!(v > 0.0)) v = kNodata;
+             return deposit;
+         }},
         {{"hazard_class", "hazard class from the maximum impact pressure (" + pressure_breaks + ")", "class",
           gis::hazard_class_palette({"not reached", "low", "medium", "high"}), gis::SampleType::uint8, 255.0},
-         classes},
+         [&] {
+             const std::vector<std::uint8_t> classes = in.maps.hazard_classes();
+             return std::vector<double>(classes.begin(), classes.end());
+         }},
     };
     const bool complete = in.stats.end_reason != EndReason::interrupted;
     std::vector<std::string> written;
-    for (const auto& [spec, values] : maps) {
+    for (const auto& [spec, make_values] : maps) {
+        const std::vector<double> values = make_values();
         gis::BandInfo band;
         band.description = spec.description;
         band.units = spec.units;
@@ -92,8 +106,8 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
         const std::string tif = spec.name + ".tif";
         gis::write_geotiff((d / tif).string(), geo, values, band, spec.type);
         gis::write_qml((d / (spec.name + ".qml")).string(), spec.ramp);
-        gis::write_quicklook_png((d / (spec.name + ".png")).string(), geo, values, elevation, spec.ramp,
-                                 spec.nodata);
+        gis::write_quicklook_png_over((d / (spec.name + ".png")).string(), geo, values, shade,
+                                      spec.ramp, spec.nodata);
         written.insert(written.end(), {tif, spec.name + ".qml", spec.name + ".png"});
     }
 

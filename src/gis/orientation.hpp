@@ -4,12 +4,17 @@
 // exactly one function, flip_north_south; every read and write goes through
 // read_solver_rows / mem_from_solver_rows, which call it.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "avalanche/gis/geo_grid.hpp"
 #include "gdal_support.hpp"
 
 namespace avalanche::gis::detail {
+
+// The GDAL (north-up) row that holds solver row `row`, and the solver row of GDAL row
+// `row`: the one reversal, its own inverse.
+inline int flipped_row(int row, int ny) { return ny - 1 - row; }
 
 // Reverses the order of the ny rows of an nx-wide row-major raster. It is its own
 // inverse: GeoTIFF rows -> solver rows, and solver rows -> GeoTIFF rows.
@@ -20,7 +25,7 @@ std::vector<T> flip_north_south(const std::vector<T>& rows, int nx, int ny) {
     for (int r = 0; r < ny; ++r) {
         const auto from = rows.begin() + static_cast<std::ptrdiff_t>(width * r);
         std::copy(from, from + static_cast<std::ptrdiff_t>(width),
-                  out.begin() + static_cast<std::ptrdiff_t>(width * (ny - 1 - r)));
+                  out.begin() + static_cast<std::ptrdiff_t>(width * flipped_row(r, ny)));
     }
     return out;
 }
@@ -33,9 +38,11 @@ DatasetPtr mem_for_grid(const GeoGrid& geo, int bands, GDALDataType type);
 std::vector<double> read_solver_rows(GDALDataset& ds, int band, const Grid& grid,
                                      const std::string& file);
 
-// Writes solver-oriented `values` into band `band` of a north-up dataset on geo.grid.
-void write_solver_rows(GDALDataset& ds, int band, const Grid& grid,
-                       const std::vector<double>& values);
+// Writes solver-oriented `values` into band `band` of a north-up dataset on geo.grid,
+// a row at a time into its flipped row (no grid-sized flipped copy: on a large grid that
+// copy's first-touched memory cost more than the write). T is double or std::uint8_t.
+template <class T>
+void write_solver_rows(GDALDataset& ds, int band, const Grid& grid, const std::vector<T>& values);
 
 // A north-up MEM raster holding solver-oriented `values` in band 1.
 DatasetPtr mem_from_solver_rows(const GeoGrid& geo, const std::vector<double>& values,

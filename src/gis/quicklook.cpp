@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <numbers>
 
@@ -50,12 +51,19 @@ std::vector<double> hillshade(const Grid& g, const std::vector<double>& z, doubl
 void write_quicklook_png(const std::string& path, const GeoGrid& geo,
                          const std::vector<double>& values, const std::vector<double>& elevation,
                          const ColorRamp& ramp, double nodata) {
+    if (elevation.size() != geo.grid.cells())
+        throw OutputError(path, "map and elevation sizes differ from the grid");
+    write_quicklook_png_over(path, geo, values, hillshade(geo.grid, elevation), ramp, nodata);
+}
+
+void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
+                              const std::vector<double>& values, const std::vector<double>& shade,
+                              const ColorRamp& ramp, double nodata) {
     detail::GdalErrorScope errors;
     const Grid& g = geo.grid;
-    if (values.size() != g.cells() || elevation.size() != g.cells())
-        throw OutputError(path, "map and elevation sizes differ from the grid");
-    const std::vector<double> shade = hillshade(g, elevation);
-    std::vector<double> rgb[3];
+    if (values.size() != g.cells() || shade.size() != g.cells())
+        throw OutputError(path, "map and hillshade sizes differ from the grid");
+    std::vector<std::uint8_t> rgb[3];
     for (auto& c : rgb) c.resize(g.cells());
     for (std::size_t k = 0; k < g.cells(); ++k) {
         const double grey = 255.0 * shade[k];
@@ -65,8 +73,8 @@ void write_quicklook_png(const std::string& path, const GeoGrid& geo,
         const double tone = kShadeFloor + (1.0 - kShadeFloor) * shade[k];
         const double channel[3] = {double(c.r), double(c.g), double(c.b)};
         for (int b = 0; b < 3; ++b)
-            rgb[b][k] =
-                std::clamp(std::round(a * channel[b] * tone + (1.0 - a) * grey), 0.0, 255.0);
+            rgb[b][k] = static_cast<std::uint8_t>(
+                std::clamp(std::round(a * channel[b] * tone + (1.0 - a) * grey), 0.0, 255.0));
     }
     // No geotransform or CRS: a plain picture, so the PNG driver writes no .aux.xml.
     detail::DatasetPtr mem = detail::create_mem_raster(g.nx, g.ny, 3, GDT_Byte);
@@ -78,8 +86,12 @@ void write_quicklook_png(const std::string& path, const GeoGrid& geo,
     std::error_code ec;
     bool written = false;
     {
-        detail::DatasetPtr out(
-            png->CreateCopy(part.c_str(), mem.get(), FALSE, nullptr, nullptr, nullptr));
+        // zlib level 3 instead of the driver's 6: half the encoding time of a large
+        // picture (0.41 -> 0.18 s for 1756 x 2068 cells) and no larger a file (level 3
+        // took 1.4 % less on that scene, docs/performance.md, "Outside the solver").
+        const char* const options[] = {"ZLEVEL=3", nullptr};
+        detail::DatasetPtr out(png->CreateCopy(part.c_str(), mem.get(), FALSE,
+                                               const_cast<char**>(options), nullptr, nullptr));
         written = out != nullptr;
     }
     if (!written || errors.failed()) {

@@ -23,5 +23,10 @@ std::vector<double> hillshade(const Grid& grid, const std::vector<double>& eleva
 void write_quicklook_png(const std::string& path, const GeoGrid& geo,
                          const std::vector<double>& values, const std::vector<double>& elevation,
                          const ColorRamp& ramp, double nodata);
+// The same over a hillshade computed once by the caller (hillshade above), for several
+// maps of one terrain: `shade` in [0, 1], one value per cell.
+void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
+                              const std::vector<double>& values, const std::vector<double>& shade,
+                              const ColorRamp& ramp, double nodata);
 
 }  // namespace avalanche::gis
