@@ -116,7 +116,6 @@ void write_geotiff(const std::string& path, const GeoGrid& geo, const std::vecto
     options.SetNameValue("PREDICTOR", "YES");  // 2 for integers, 3 for floats
     options.SetNameValue("OVERVIEWS", "AUTO");
     options.SetNameValue("OVERVIEW_RESAMPLING", info.integer ? "NEAREST" : "AVERAGE");
-    options.SetNameValue("NUM_THREADS", "ALL_CPUS");
 
     const std::string part = path + ".part";
     std::filesystem::remove(part, ec);

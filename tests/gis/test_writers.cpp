@@ -58,6 +58,34 @@ TEST(WriteGeotiff, CogWithCrsNodataUnitsAndDescription) {
     EXPECT_FALSE(std::filesystem::exists(tmp.file("max_depth.tif.aux.xml")));
 }
 
+// The rows are written north-up (write_solver_rows, a row at a time into its flipped
+// row), across tiles and on a grid larger than a tile in both directions.
+TEST(WriteGeotiff, RowsAreWrittenNorthUp) {
+    TempDir tmp;
+    const GeoGrid geo = utm_grid(1100, 900);  // 3 x 2 tiles of 512 and overviews
+    std::vector<double> z(geo.grid.cells());
+    for (int j = 0; j < 900; ++j)
+        for (int i = 0; i < 1100; ++i)
+            z[static_cast<std::size_t>(j) * 1100 + i] = 1000.0 + 0.5 * i + 2.0 * j + std::sin(0.1 * i * j);
+    write_geotiff(tmp.file("z.tif"), geo, z, BandInfo{"elevation", "m", -9999.0, {}, {}});
+
+    GDALAllRegister();
+    GDALDataset* ds = GDALDataset::Open(tmp.file("z.tif").c_str(), GDAL_OF_RASTER);
+    ASSERT_NE(ds, nullptr);
+    const auto pixel = [&](int col, int row) {
+        float v = 0.0f;
+        EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, col, row, 1, 1, &v, 1, 1, GDT_Float32, 0, 0,
+                                                  nullptr),
+                  CE_None);
+        return v;
+    };
+    // Raster row 0 is the solver's northernmost row j = 899, the last row j = 0.
+    EXPECT_EQ(pixel(7, 0), static_cast<float>(z[899 * 1100 + 7]));
+    EXPECT_EQ(pixel(1099, 899), static_cast<float>(z[1099]));
+    EXPECT_EQ(pixel(600, 300), static_cast<float>(z[(899 - 300) * 1100 + 600]));
+    GDALClose(ds);
+}
+
 TEST(WriteGeotiff, ClassMapAsBytes) {
     TempDir tmp;
     const GeoGrid geo = utm_grid(8, 6);
