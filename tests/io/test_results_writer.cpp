@@ -81,6 +81,68 @@ TEST(ResultsWriter, DatasetsHaveTheGridShapeAndOneRecordPerSnapshot) {
     }
 }
 
+// A snapshot writes only the chunk tiles (256 x 256) that meet the active box; the
+// others are not allocated and read back as zeros. On a 600 x 300 grid (3 x 2 tiles),
+// material in a box straddling two tiles: every value read back equals the state's,
+// exactly two chunks hold the record; an empty box writes none.
+TEST(ResultsWriter, OnlyTheTilesMeetingTheActiveBoxAreWritten) {
+    test::ScratchDir dir("results-tiles");
+    const Grid g{600, 300, 2.0, 2.0, 0.0, 0.0};
+    TerrainFields terrain;
+    terrain.allocate(g, false, false);
+    State s(g);
+    const ActiveBox box{250, 262, 10, 20};  // tile columns 0 and 1, dataset rows 280-289
+    for (int j = box.j0; j < box.j1; ++j)
+        for (int i = box.i0; i < box.i1; ++i) {
+            if ((i + j) % 3 == 0) continue;  // dry cells inside the box too
+            s.h(i, j) = 0.1 + 0.01 * i + 0.001 * j;
+            s.hu(i, j) = 0.3 * s.h(i, j) - 0.002 * j;
+            s.hv(i, j) = -0.2 * s.h(i, j) + 0.001 * i;
+            terrain.normal_thickness(i, j) = 0.9 - 0.001 * j;
+        }
+    ResultsMetadata meta;
+    meta.config = nlohmann::json::object();
+    const std::string path = dir.file("results.h5");
+    {
+        ResultsWriter writer(path, g, meta);
+        writer.on_output(SimulationView{g, terrain, s, 0.5, 10, box});
+        const ActiveBox none{};
+        const State dry(g);
+        writer.on_output(SimulationView{g, terrain, dry, 1.0, 20, none});
+        writer.finish(RunStatistics{});
+    }
+    const auto h = test::read_h5_dataset(path, "h"), u = test::read_h5_dataset(path, "u"),
+               v = test::read_h5_dataset(path, "v");
+    ASSERT_EQ(h.dims, (std::vector<hsize_t>{2, 300, 600}));
+    std::size_t wet = 0;
+    for (int r = 0; r < 300; ++r)
+        for (int i = 0; i < 600; ++i) {
+            const int j = 299 - r;
+            const std::size_t k = static_cast<std::size_t>(r) * 600 + i, k2 = k + 300 * 600;
+            const double hh = s.h(i, j);
+            EXPECT_EQ(h.values[k], hh * terrain.normal_thickness(i, j));
+            EXPECT_EQ(u.values[k], hh > 0.0 ? s.hu(i, j) / hh : 0.0);
+            EXPECT_EQ(v.values[k], hh > 0.0 ? s.hv(i, j) / hh : 0.0);
+            EXPECT_EQ(h.values[k2], 0.0);
+            EXPECT_EQ(u.values[k2], 0.0);
+            wet += hh > 0.0;
+        }
+    EXPECT_EQ(wet, 80u);
+    // Chunks allocated in each dataset: the first record's two, none for the second.
+    hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    for (const char* name : {"h", "u", "v"}) {
+        hid_t ds = H5Dopen2(f, name, H5P_DEFAULT);
+        hid_t space = H5Dget_space(ds);  // everything selected
+        hsize_t chunks = 0;
+        ASSERT_GE(H5Dget_num_chunks(ds, space, &chunks), 0);
+        EXPECT_EQ(chunks, 2u) << name;
+        H5Sclose(space);
+        H5Dclose(ds);
+    }
+    H5Fclose(f);
+}
+
 TEST(ResultsWriter, RowZeroIsTheTopSoAReleaseNearYZeroIsInTheBottomRows) {
     test::ScratchDir dir("results-flip");
     const SmallRun r = run_small_chute(dir);
