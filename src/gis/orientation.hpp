@@ -1,8 +1,9 @@
 #pragma once
 // Orientation between GIS rasters (north-up, row 0 = northernmost row) and the
 // solver (j = 0 = southernmost row). STYLE.md convention 10: the row flip lives in
-// exactly one function, flip_north_south; every read and write goes through
-// read_solver_rows / mem_from_solver_rows, which call it.
+// exactly one function, flipped_row; every read and write goes through
+// read_solver_rows / write_solver_rows / mem_from_solver_rows, which use it (through
+// flip_north_south for whole rasters).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
