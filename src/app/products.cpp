@@ -2,9 +2,14 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <exception>
 #include <filesystem>
 #include <functional>
+#include <mutex>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -89,8 +94,9 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
          }},
     };
     const bool complete = in.stats.end_reason != EndReason::interrupted;
-    std::vector<std::string> written;
-    for (const auto& [spec, make_values] : maps) {
+    // Map k of `maps`: its GeoTIFF, style and quick-look; the files it wrote.
+    const auto write_map = [&](std::size_t k) -> std::vector<std::string> {
+        const auto& [spec, make_values] = maps[k];
         const std::vector<double> values = make_values();
         gis::BandInfo band;
         band.description = spec.description;
@@ -108,16 +114,45 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
         gis::write_qml((d / (spec.name + ".qml")).string(), spec.ramp);
         gis::write_quicklook_png_over((d / (spec.name + ".png")).string(), geo, values, shade,
                                       spec.ramp, spec.nodata);
-        written.insert(written.end(), {tif, spec.name + ".qml", spec.name + ".png"});
-    }
-
+        return {tif, spec.name + ".qml", spec.name + ".png"};
+    };
     // The computational DEM: the terrain the solver saw, on its grid.
-    gis::BandInfo dem_band;
-    dem_band.description = in.scene.frame == Frame::dem ? "computational DEM (elevation)"
-                                                        : "chute bed height above its lowest point";
-    dem_band.units = "m";
-    gis::write_geotiff((d / "dem.tif").string(), geo, elevation, dem_band, gis::SampleType::float32);
-    written.push_back("dem.tif");
+    const auto write_dem = [&]() -> std::vector<std::string> {
+        gis::BandInfo dem_band;
+        dem_band.description = in.scene.frame == Frame::dem ? "computational DEM (elevation)"
+                                                            : "chute bed height above its lowest point";
+        dem_band.units = "m";
+        gis::write_geotiff((d / "dem.tif").string(), geo, elevation, dem_band, gis::SampleType::float32);
+        return {"dem.tif"};
+    };
+    // The six maps and the DEM are independent files (GDAL only): written by as many
+    // threads as the run had (summary "threads"), each taking the next one. On a large
+    // grid they were most of a run's time outside the solver (docs/performance.md,
+    // "Outside the solver"). The list of files keeps the order of `maps`.
+    std::vector<std::vector<std::string>> files(maps.size() + 1);
+    std::atomic<std::size_t> next{0};
+    std::mutex failure_mutex;
+    std::exception_ptr failure;
+    const auto worker = [&] {
+        for (std::size_t k; (k = next++) < files.size();) {
+            try {
+                files[k] = k < maps.size() ? write_map(k) : write_dem();
+            } catch (...) {
+                const std::lock_guard lock(failure_mutex);
+                if (!failure) failure = std::current_exception();
+                next = files.size();  // the others stop after their current file
+            }
+        }
+    };
+    const std::size_t workers =
+        std::clamp<std::size_t>(static_cast<std::size_t>(std::max(1, in.stats.threads)), 1, files.size());
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < workers; ++t) helpers.emplace_back(worker);
+    worker();
+    for (std::thread& h : helpers) h.join();
+    if (failure) std::rethrow_exception(failure);
+    std::vector<std::string> written;
+    for (const auto& f : files) written.insert(written.end(), f.begin(), f.end());
 
     if (in.probes && !in.probes->points().empty()) {
         write_monitoring_csv((d / "monitoring.csv").string(), *in.probes);
