@@ -6,7 +6,6 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -27,6 +26,7 @@
 #include "batch_outputs.hpp"
 #include "interrupt.hpp"
 #include "logging.hpp"
+#include "work_queue.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -152,52 +152,51 @@ std::vector<Failure> run_pending(const std::vector<Planned*>& pending, Manifest&
     spdlog::info("running {} scenario(s), {} at a time, {} OpenMP thread(s) each", pending.size(),
                  workers, omp_threads);
     std::mutex mutex;
-    std::atomic<std::size_t> next{0};
     std::size_t finished = 0;
     std::vector<Failure> failures;
     auto save_manifest = [&] {
         if (owns_manifest) write_manifest(manifest_path, manifest, batch);
     };
-    auto work = [&] {
-#ifdef _OPENMP
-        omp_set_num_threads(omp_threads);
-#endif
-        for (std::size_t k; (k = next++) < pending.size() && !InterruptGuard::requested();) {
-            const Planned& p = *pending[k];
-            const std::string& id = p.batch_case.id;
-            // Every log line of this scenario, from this thread, names it.
-            const ScopedLogContext context(id);
+    const auto run_one = [&](std::size_t k) {
+        const Planned& p = *pending[k];
+        const std::string& id = p.batch_case.id;
+        // Every log line of this scenario, from this thread, names it.
+        const ScopedLogContext context(id);
+        try {
+            std::error_code ec;
+            fs::remove_all(p.dir, ec);  // no stale product of an older configuration
+            prepare_output_folder(p.dir, false);
+            RunOptions options{p.dir, global.command_line,
+                               [](double) { return !InterruptGuard::requested(); }};
+            const RunOutcome outcome = execute_scene(*p.scene, p.scenario, options);
+            const std::lock_guard lock(mutex);
+            const bool done = outcome.stats.end_reason != EndReason::interrupted;
+            manifest[id].complete = done;
+            manifest[id].error.clear();
+            save_manifest();
+            spdlog::info("finished ({} of {}){}", ++finished, pending.size(),
+                         done ? "" : ": interrupted");
+        } catch (const std::exception& e) {
+            const auto* err = dynamic_cast<const Error*>(&e);
+            const std::lock_guard lock(mutex);
+            failures.push_back({id, e.what(), err ? err->code() : ExitCode::internal});
+            manifest[id].complete = false;
+            manifest[id].error = e.what();
+            spdlog::error("failed: {}", e.what());
             try {
-                std::error_code ec;
-                fs::remove_all(p.dir, ec);  // no stale product of an older configuration
-                prepare_output_folder(p.dir, false);
-                RunOptions options{p.dir, global.command_line,
-                                   [](double) { return !InterruptGuard::requested(); }};
-                const RunOutcome outcome = execute_scene(*p.scene, p.scenario, options);
-                const std::lock_guard lock(mutex);
-                const bool done = outcome.stats.end_reason != EndReason::interrupted;
-                manifest[id].complete = done;
-                manifest[id].error.clear();
                 save_manifest();
-                spdlog::info("finished ({} of {}){}", ++finished, pending.size(),
-                             done ? "" : ": interrupted");
-            } catch (const std::exception& e) {
-                const auto* err = dynamic_cast<const Error*>(&e);
-                const std::lock_guard lock(mutex);
-                failures.push_back({id, e.what(), err ? err->code() : ExitCode::internal});
-                manifest[id].complete = false;
-                manifest[id].error = e.what();
-                spdlog::error("failed: {}", e.what());
-                try {
-                    save_manifest();
-                } catch (const std::exception&) {  // reported with the scenario's failure
-                }
+            } catch (const std::exception&) {  // reported with the scenario's failure
             }
         }
     };
-    std::vector<std::thread> threads;
-    for (int w = 0; w < workers; ++w) threads.emplace_back(work);
-    for (auto& t : threads) t.join();
+    run_on_threads(pending.size(), workers, run_one, [] { return InterruptGuard::requested(); },
+                   [omp_threads] {
+#ifdef _OPENMP
+                       omp_set_num_threads(omp_threads);
+#else
+                       (void)omp_threads;
+#endif
+                   });
     return failures;
 }
 

@@ -2,14 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
-#include <atomic>
 #include <cstdint>
-#include <exception>
 #include <filesystem>
 #include <functional>
-#include <mutex>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -18,6 +13,7 @@
 #include "avalanche/gis/raster_writer.hpp"
 #include "avalanche/gis/style.hpp"
 #include "avalanche/io/monitoring_writer.hpp"
+#include "work_queue.hpp"
 
 namespace avalanche {
 
@@ -130,27 +126,8 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     // grid they were most of a run's time outside the solver (docs/performance.md,
     // "Outside the solver"). The list of files keeps the order of `maps`.
     std::vector<std::vector<std::string>> files(maps.size() + 1);
-    std::atomic<std::size_t> next{0};
-    std::mutex failure_mutex;
-    std::exception_ptr failure;
-    const auto worker = [&] {
-        for (std::size_t k; (k = next++) < files.size();) {
-            try {
-                files[k] = k < maps.size() ? write_map(k) : write_dem();
-            } catch (...) {
-                const std::lock_guard lock(failure_mutex);
-                if (!failure) failure = std::current_exception();
-                next = files.size();  // the others stop after their current file
-            }
-        }
-    };
-    const std::size_t workers =
-        std::clamp<std::size_t>(static_cast<std::size_t>(std::max(1, in.stats.threads)), 1, files.size());
-    std::vector<std::thread> helpers;
-    for (std::size_t t = 1; t < workers; ++t) helpers.emplace_back(worker);
-    worker();
-    for (std::thread& h : helpers) h.join();
-    if (failure) std::rethrow_exception(failure);
+    run_on_threads(files.size(), in.stats.threads,
+                   [&](std::size_t k) { files[k] = k < maps.size() ? write_map(k) : write_dem(); });
     std::vector<std::string> written;
     for (const auto& f : files) written.insert(written.end(), f.begin(), f.end());
 

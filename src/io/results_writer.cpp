@@ -107,8 +107,28 @@ struct ResultsWriter::Impl {
                                    static_cast<hsize_t>(grid.nx)};
         h5_check(H5Dset_extent(ds.get(), extent), part_path, "append a snapshot");
     }
-    // Writes `data` (count[1] x count[2] values, or one for the time) at record
-    // `snapshots`, rows and columns from start[1], start[2] (dataset orientation).
+    // Writes h, u and v of the dataset rows [r0, r1), columns [c0, c1) (one chunk tile) at
+    // record `snapshots`, from the state (solver row j = ny - 1 - r).
+    void write_tile(const SimulationView& view, int r0, int r1, int c0, int c1) {
+        std::size_t k = 0;
+        for (int r = r0; r < r1; ++r) {
+            const int j = grid.ny - 1 - r;
+            for (int i = c0; i < c1; ++i, ++k) {
+                const double h = view.state.h(i, j);
+                const bool wet = h > 0.0;
+                tile_h[k] = h * view.terrain.normal_thickness(i, j);
+                tile_u[k] = wet ? view.state.hu(i, j) / h : 0.0;
+                tile_v[k] = wet ? view.state.hv(i, j) / h : 0.0;
+            }
+        }
+        const hsize_t start[2] = {static_cast<hsize_t>(r0), static_cast<hsize_t>(c0)};
+        const hsize_t count[2] = {static_cast<hsize_t>(r1 - r0), static_cast<hsize_t>(c1 - c0)};
+        write_block(h, 3, start, count, tile_h.data());
+        write_block(u, 3, start, count, tile_u.data());
+        write_block(v, 3, start, count, tile_v.data());
+    }
+    // Writes `data` (count_rc[0] x count_rc[1] values, or one for the time) at record
+    // `snapshots`, from row start_rc[0] and column start_rc[1] (dataset orientation).
     void write_block(const Hid& ds, int rank, const hsize_t start_rc[2], const hsize_t count_rc[2],
                      const double* data) const {
         const std::string what = "append a snapshot";
@@ -181,28 +201,10 @@ void ResultsWriter::on_output(const SimulationView& view) {
         // dataset rows [ny - j1, ny - j0).
         const int r_first = (ny - b.j1) / tile, r_last = (ny - 1 - b.j0) / tile;
         const int c_first = b.i0 / tile, c_last = (b.i1 - 1) / tile;
-        for (int tr = r_first; tr <= r_last; ++tr) {
-            for (int tc = c_first; tc <= c_last; ++tc) {
-                const int r0 = tr * tile, r1 = std::min(ny, r0 + tile);
-                const int c0 = tc * tile, c1 = std::min(nx, c0 + tile);
-                std::size_t k = 0;
-                for (int r = r0; r < r1; ++r) {
-                    const int j = ny - 1 - r;
-                    for (int i = c0; i < c1; ++i, ++k) {
-                        const double h = view.state.h(i, j);
-                        const bool wet = h > 0.0;
-                        w.tile_h[k] = h * view.terrain.normal_thickness(i, j);
-                        w.tile_u[k] = wet ? view.state.hu(i, j) / h : 0.0;
-                        w.tile_v[k] = wet ? view.state.hv(i, j) / h : 0.0;
-                    }
-                }
-                const hsize_t start[2] = {static_cast<hsize_t>(r0), static_cast<hsize_t>(c0)};
-                const hsize_t count[2] = {static_cast<hsize_t>(r1 - r0), static_cast<hsize_t>(c1 - c0)};
-                w.write_block(w.h, 3, start, count, w.tile_h.data());
-                w.write_block(w.u, 3, start, count, w.tile_u.data());
-                w.write_block(w.v, 3, start, count, w.tile_v.data());
-            }
-        }
+        for (int tr = r_first; tr <= r_last; ++tr)
+            for (int tc = c_first; tc <= c_last; ++tc)
+                w.write_tile(view, tr * tile, std::min(ny, (tr + 1) * tile), tc * tile,
+                             std::min(nx, (tc + 1) * tile));
     }
     const hsize_t origin[2] = {0, 0}, one[2] = {1, 1};
     w.write_block(w.time, 1, origin, one, &view.t);

@@ -28,7 +28,6 @@ public:
         lap_start_ = now;
     }
 
-    [[nodiscard]] const std::vector<std::pair<std::string, double>>& phases() const { return phases_; }
     [[nodiscard]] double total() const;
     // {"<phase>": seconds, ..., "total": seconds}.
     [[nodiscard]] nlohmann::json to_json() const;
