@@ -1,6 +1,8 @@
 #include "avalanche/core/field_storage.hpp"
 
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -8,19 +10,55 @@
 
 namespace avalanche {
 
+namespace {
+
+#if defined(__linux__)
+// A large array's mapping: its bytes rounded up to whole pages.
+std::size_t mapped_bytes(std::size_t bytes) { return (bytes + 4095) / 4096 * 4096; }
+#endif
+
+}  // namespace
+
 void* allocate_field_bytes(std::size_t bytes) {
-    const bool huge = bytes >= kHugePageMinBytes;
+#if defined(__linux__)
+    if (bytes >= kHugePageMinBytes) {
+        // Over-map by one huge page, then give back what lies before the first 2 MiB
+        // boundary and after the array: the mapping starts on the boundary and is zero.
+        const std::size_t size = mapped_bytes(bytes);
+        void* raw = mmap(nullptr, size + kHugePageBytes, PROT_READ | PROT_WRITE,
+                         MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (raw == MAP_FAILED) throw std::bad_alloc();
+        const auto base = reinterpret_cast<std::uintptr_t>(raw);
+        const std::uintptr_t aligned = (base + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+        if (aligned > base) munmap(raw, aligned - base);
+        const std::uintptr_t end = base + size + kHugePageBytes;
+        if (end > aligned + size) munmap(reinterpret_cast<void*>(aligned + size), end - (aligned + size));
+        void* p = reinterpret_cast<void*>(aligned);
+#if defined(MADV_HUGEPAGE)
+        // Only whole 2 MiB pages: the tail stays in small pages, so a field never holds
+        // more than its own size plus under 2 MiB. A refusal (THP off) leaves small pages.
+        (void)madvise(p, bytes / kHugePageBytes * kHugePageBytes, MADV_HUGEPAGE);
+#endif
+        return p;
+    }
+#endif
+    const bool huge = bytes >= kHugePageMinBytes;  // only where mmap is not used
     void* p = nullptr;
     if (posix_memalign(&p, huge ? kHugePageBytes : 64, bytes == 0 ? 64 : bytes) != 0)
         throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    // Only whole 2 MiB pages: the tail stays in small pages, so a field never holds
-    // more than its own size plus under 2 MiB. A refusal (THP off) leaves small pages.
-    if (huge) (void)madvise(p, bytes / kHugePageBytes * kHugePageBytes, MADV_HUGEPAGE);
-#endif
+    std::memset(p, 0, bytes);
     return p;
 }
 
-void free_field_bytes(void* p) noexcept { std::free(p); }
+void free_field_bytes(void* p, std::size_t bytes) noexcept {
+    if (p == nullptr) return;
+#if defined(__linux__)
+    if (bytes >= kHugePageMinBytes) {
+        munmap(p, mapped_bytes(bytes));
+        return;
+    }
+#endif
+    std::free(p);
+}
 
 }  // namespace avalanche

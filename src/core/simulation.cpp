@@ -113,9 +113,12 @@ StepScan scan_state(const State& s, const Grid& g, const ActiveBox& box, double 
 double effective_h_min(const NumericsParams& n, const State& initial, const TerrainFields& terrain) {
     if (n.h_min > 0.0) return n.h_min;
     double deepest = 0.0;
+    // The terrain of released cells only: elsewhere h = 0, and reading a terrain made on
+    // demand (terrain.hpp) there would touch memory no run needs.
     for (int j = 0; j < initial.h.ny(); ++j)
         for (int i = 0; i < initial.h.nx(); ++i)
-            deepest = std::max(deepest, initial.h(i, j) * terrain.normal_thickness(i, j));
+            if (initial.h(i, j) > 0.0)
+                deepest = std::max(deepest, initial.h(i, j) * terrain.normal_thickness(i, j));
     return deepest > 0.0 ? n.h_min_relative * deepest : n.h_min_relative;
 }
 

@@ -97,11 +97,19 @@ std::string scene_fingerprint(const Grid& grid, const TerrainFields& terrain, co
     f.value(grid.x0);
     f.value(grid.y0);
     f.value(static_cast<int>(terrain.frame));
-    for (const Field2D* field :
-         {&terrain.ax, &terrain.ay, &terrain.px, &terrain.py, &terrain.gn, &terrain.cxx,
-          &terrain.cxy, &terrain.cyy, &terrain.sx, &terrain.sy, &terrain.normal_thickness,
-          &terrain.elevation, &initial.h, &initial.hu, &initial.hv})
-        f.field(*field);
+    // Terrain made on demand (terrain.hpp) holds its coefficients only where a run has
+    // needed them so far: it is identified by its elevation and what it derives from it
+    // (has_curvature, has_metric), the derivation being fixed by the build (a checkpoint
+    // is resumed only by the build that wrote it) and the gravity by the configuration.
+    f.value(terrain.on_demand ? 1 : 0);
+    f.value(terrain.has_curvature ? 1 : 0);
+    f.value(terrain.has_metric ? 1 : 0);
+    if (!terrain.on_demand)
+        for (const Field2D* field : {&terrain.ax, &terrain.ay, &terrain.px, &terrain.py, &terrain.gn,
+                                     &terrain.cxx, &terrain.cxy, &terrain.cyy, &terrain.sx, &terrain.sy,
+                                     &terrain.normal_thickness})
+            f.field(*field);
+    for (const Field2D* field : {&terrain.elevation, &initial.h, &initial.hu, &initial.hv}) f.field(*field);
     f.bytes(sinks.data(), sinks.size());
     for (const ProbeLocation& p : probes) {
         f.bytes(p.name.data(), p.name.size());

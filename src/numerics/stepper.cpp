@@ -42,6 +42,7 @@ double Stepper::energy_budget_of(const State& s) const {
 // small flow on a large grid does not scan the whole grid).
 double Stepper::energy_budget_in(const State& s, const ActiveBox& wet) const {
     const double g = numerics_.gravity;
+    terrain_.ensure(wet.i0, wet.i1, wet.j0, wet.j1);
     double budget = -std::numeric_limits<double>::infinity();
     for (int j = wet.j0; j < wet.j1; ++j) {
         for (int i = wet.i0; i < wet.i1; ++i) {
@@ -83,6 +84,13 @@ void Stepper::shrink_box_to_wet(const State& s, const ActiveBox& search) {
     if (wet.i1 < 0) wet = ActiveBox{0, 0, 0, 0};
     wet_box_ = wet;
     box_ = wet.widened(numerics_.active_margin, grid_.nx, grid_.ny);
+    // The kernels read the terrain of the box and of kGhostLayers cells beyond it (its
+    // per-cell rows, per_cell_box); two more cells for good measure. Terrain made on
+    // demand (terrain.hpp) is made here, before any kernel of the step reads it.
+    if (!box_.empty()) {
+        const ActiveBox read = box_.widened(kGhostLayers + 2, grid_.nx, grid_.ny);
+        terrain_.ensure(read.i0, read.i1, read.j0, read.j1);
+    }
 }
 
 void Stepper::reset_active_box(const State& s) {

@@ -9,9 +9,10 @@ ReleaseTop release_top(const Grid& grid, const TerrainFields& terrain, const Sta
                        double h_threshold) {
     ReleaseTop top;
     double top_z = -1e300;
+    // Released cells only (their terrain is made, terrain.hpp).
     for (int j = 0; j < grid.ny; ++j)
         for (int i = 0; i < grid.nx; ++i)
-            if (initial.h(i, j) * terrain.normal_thickness(i, j) >= h_threshold &&
+            if (initial.h(i, j) > 0.0 && initial.h(i, j) * terrain.normal_thickness(i, j) >= h_threshold &&
                 terrain.elevation(i, j) > top_z) {
                 top_z = terrain.elevation(i, j);
                 top = {i, j};
@@ -43,7 +44,10 @@ RunoutMetrics compute_runout(const Grid& grid, const TerrainFields& terrain, Rel
             m.max_depth_m = std::max(m.max_depth_m, maps.max_depth()[k]);
             m.max_velocity_ms = std::max(m.max_velocity_ms, maps.max_speed()[k]);
             m.max_pressure_kpa = std::max(m.max_pressure_kpa, maps.max_pressure()[k]);
-            m.deposit_volume_m3 += maps.deposit_depth()[k] / terrain.normal_thickness(i, j) * cell_area_m2;
+            // Only cells with a deposit: the flow reached them, so their terrain is made
+            // (terrain.hpp); elsewhere the term was 0 / normal_thickness = 0.
+            if (maps.deposit_depth()[k] != 0.0)
+                m.deposit_volume_m3 += maps.deposit_depth()[k] / terrain.normal_thickness(i, j) * cell_area_m2;
             if (maps.max_depth()[k] < thr) continue;
             ++reached;
             if (top_i < 0) continue;

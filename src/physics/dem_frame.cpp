@@ -16,11 +16,11 @@ struct Derivatives {
     double zx, zy, zxx, zxy, zyy;
 };
 
-Derivatives derivatives_at(const Grid& g, const std::vector<double>& z, int i, int j) {
+// z is the terrain's elevation field, read at clamped interior cells only (its ghosts
+// are not part of the DEM).
+Derivatives derivatives_at(const Grid& g, const Field2D& z, int i, int j) {
     const auto at = [&](int ii, int jj) {
-        ii = std::clamp(ii, 0, g.nx - 1);
-        jj = std::clamp(jj, 0, g.ny - 1);
-        return z[static_cast<std::size_t>(jj) * g.nx + ii];
+        return z(std::clamp(ii, 0, g.nx - 1), std::clamp(jj, 0, g.ny - 1));
     };
     Derivatives d{};
     // x: central inside, one-sided at the edges; a single column has no slope.
@@ -48,46 +48,44 @@ Derivatives derivatives_at(const Grid& g, const std::vector<double>& z, int i, i
     return d;
 }
 
-Field2D smoothed(const Field2D& f, const Grid& g) {
-    Field2D out(g.nx, g.ny, kGhostLayers, 0.0);
-    for (int j = 0; j < g.ny; ++j) {
+// Is any second difference of z above the tolerance? Planar terrain skips the
+// centripetal term. The scan stops at the first such cell (on a real DEM, in its first
+// rows); only a plane is read to the end.
+bool has_curvature(const Grid& g, const Field2D& z, double tolerance) {
+    for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) {
-            double sum = 0.0;
-            int n = 0;
-            for (int dj = -1; dj <= 1; ++dj)
-                for (int di = -1; di <= 1; ++di) {
-                    const int ii = i + di, jj = j + dj;
-                    if (ii < 0 || jj < 0 || ii >= g.nx || jj >= g.ny) continue;
-                    sum += f(ii, jj);
-                    ++n;
-                }
-            out(i, j) = sum / n;
+            const Derivatives d = derivatives_at(g, z, i, j);
+            if (std::max({std::abs(d.zxx), std::abs(d.zxy), std::abs(d.zyy)}) > tolerance) return true;
         }
-    }
-    return out;
+    return false;
 }
 
-}  // namespace
-
-TerrainFields dem_terrain(const Grid& grid, const std::vector<double>& z, double gravity,
-                          const DemFrameOptions& options) {
-    if (z.size() != grid.cells())
-        throw Error(ExitCode::internal, "dem_terrain: elevation size does not match the grid");
-    // First pass: is there any curvature at all? Planar terrain skips the term. The
-    // derivatives are computed again in the second pass rather than kept: kept, they
-    // were 40 bytes per cell on top of the terrain fields and set the run's peak memory.
-    double max_curvature = 0.0;
-    for (int j = 0; j < grid.ny; ++j)
-        for (int i = 0; i < grid.nx; ++i) {
-            const Derivatives dd = derivatives_at(grid, z, i, j);
-            max_curvature = std::max({max_curvature, std::abs(dd.zxx), std::abs(dd.zxy), std::abs(dd.zyy)});
+// Copies the edge values of cells [i0, i1) x [j0, j1) into the ghost cells beyond the
+// edges of the grid the range reaches: Field2D::extend_to_ghosts restricted to the
+// range (columns first, then rows with their corners), so the values are the same.
+void extend_to_ghosts_of(Field2D& f, int i0, int i1, int j0, int j1) {
+    const int nx = f.nx(), ny = f.ny(), ng = f.ghosts();
+    for (int j = j0; j < j1; ++j)
+        for (int g = 1; g <= ng; ++g) {
+            if (i0 == 0) f(-g, j) = f(0, j);
+            if (i1 == nx) f(nx - 1 + g, j) = f(nx - 1, j);
         }
-    TerrainFields t;
-    t.frame = Frame::dem;
-    t.allocate(grid, max_curvature > options.curvature_tolerance, /*metric=*/true);
-    for (int j = 0; j < grid.ny; ++j) {
-        for (int i = 0; i < grid.nx; ++i) {
-            const Derivatives dd = derivatives_at(grid, z, i, j);
+    const int ia = i0 == 0 ? -ng : i0, ib = i1 == nx ? nx + ng : i1;
+    for (int g = 1; g <= ng; ++g)
+        for (int i = ia; i < ib; ++i) {
+            if (j0 == 0) f(i, -g) = f(i, 0);
+            if (j1 == ny) f(i, ny - 1 + g) = f(i, ny - 1);
+        }
+}
+
+// The DEM frame's coefficients of the cells [i0, i1) x [j0, j1), from t.elevation.
+// The smoothed curvature of a cell is the mean of the raw curvature of its neighbours
+// in the grid, summed in the same order as over the whole grid at once.
+void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const DemFrameOptions& options,
+                    int i0, int i1, int j0, int j1) {
+    for (int j = j0; j < j1; ++j) {
+        for (int i = i0; i < i1; ++i) {
+            const Derivatives dd = derivatives_at(grid, t.elevation, i, j);
             const double s2 = 1.0 + dd.zx * dd.zx + dd.zy * dd.zy;
             const double s = std::sqrt(s2);
             t.ax(i, j) = -gravity * dd.zx / s2;
@@ -98,20 +96,79 @@ TerrainFields dem_terrain(const Grid& grid, const std::vector<double>& z, double
             t.sx(i, j) = dd.zx;
             t.sy(i, j) = dd.zy;
             t.normal_thickness(i, j) = 1.0 / s;
-            t.elevation(i, j) = z[static_cast<std::size_t>(j) * grid.nx + i];
-            if (t.has_curvature) {
-                t.cxx(i, j) = dd.zxx / s;
-                t.cxy(i, j) = dd.zxy / s;
-                t.cyy(i, j) = dd.zyy / s;
-            }
         }
     }
-    if (t.has_curvature && options.smooth_curvature) {
-        t.cxx = smoothed(t.cxx, grid);
-        t.cxy = smoothed(t.cxy, grid);
-        t.cyy = smoothed(t.cyy, grid);
+    if (t.has_curvature) {
+        // Raw curvature over the range and, for the smoothing, one cell around it.
+        const int m = options.smooth_curvature ? 1 : 0;
+        const int a0 = std::max(0, i0 - m), a1 = std::min(grid.nx, i1 + m);
+        const int b0 = std::max(0, j0 - m), b1 = std::min(grid.ny, j1 + m);
+        const int w = a1 - a0;
+        std::vector<double> raw[3];
+        for (auto& r : raw) r.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(b1 - b0));
+        for (int j = b0; j < b1; ++j)
+            for (int i = a0; i < a1; ++i) {
+                const Derivatives dd = derivatives_at(grid, t.elevation, i, j);
+                const double s = std::sqrt(1.0 + dd.zx * dd.zx + dd.zy * dd.zy);
+                const std::size_t k = static_cast<std::size_t>(j - b0) * w + (i - a0);
+                raw[0][k] = dd.zxx / s;
+                raw[1][k] = dd.zxy / s;
+                raw[2][k] = dd.zyy / s;
+            }
+        Field2D* out[3] = {&t.cxx, &t.cxy, &t.cyy};
+        for (int c = 0; c < 3; ++c) {
+            const auto at = [&](int i, int j) { return raw[c][static_cast<std::size_t>(j - b0) * w + (i - a0)]; };
+            for (int j = j0; j < j1; ++j)
+                for (int i = i0; i < i1; ++i) {
+                    if (m == 0) {
+                        (*out[c])(i, j) = at(i, j);
+                        continue;
+                    }
+                    double sum = 0.0;
+                    int n = 0;
+                    for (int dj = -1; dj <= 1; ++dj)
+                        for (int di = -1; di <= 1; ++di) {
+                            const int ii = i + di, jj = j + dj;
+                            if (ii < 0 || jj < 0 || ii >= grid.nx || jj >= grid.ny) continue;
+                            sum += at(ii, jj);
+                            ++n;
+                        }
+                    (*out[c])(i, j) = sum / n;
+                }
+        }
     }
-    t.extend_to_ghosts();
+    for (Field2D* f : {&t.ax, &t.ay, &t.px, &t.py, &t.gn, &t.cxx, &t.cxy, &t.cyy, &t.sx, &t.sy,
+                       &t.normal_thickness})
+        if (!f->empty()) extend_to_ghosts_of(*f, i0, i1, j0, j1);
+}
+
+}  // namespace
+
+TerrainFields dem_terrain(const Grid& grid, const std::vector<double>& z, double gravity,
+                          const DemFrameOptions& options) {
+    if (z.size() != grid.cells())
+        throw Error(ExitCode::internal, "dem_terrain: elevation size does not match the grid");
+    TerrainFields t;
+    t.frame = Frame::dem;
+    const auto field = [&] { return Field2D(grid.nx, grid.ny, kGhostLayers); };
+    t.elevation = field();
+    t.elevation.set_interior(z);
+    t.elevation.extend_to_ghosts();
+    t.has_curvature = has_curvature(grid, t.elevation, options.curvature_tolerance);
+    t.has_metric = true;
+    // Zero until made (Field2D's zeros are not written: memory nobody makes stays
+    // untouched).
+    for (Field2D* f : {&t.ax, &t.ay, &t.px, &t.py, &t.gn, &t.sx, &t.sy, &t.normal_thickness}) *f = field();
+    if (t.has_curvature)
+        for (Field2D* f : {&t.cxx, &t.cxy, &t.cyy}) *f = field();
+    t.on_demand = std::make_unique<TerrainTiles>(
+        grid, [grid, gravity, options](TerrainFields& f, int i0, int i1, int j0, int j1) {
+            make_dem_cells(f, grid, gravity, options, i0, i1, j0, j1);
+        });
+    if (!options.on_demand) {
+        t.ensure_everywhere();
+        t.on_demand.reset();
+    }
     return t;
 }
 

@@ -109,10 +109,26 @@ Field2D rasterize_release(const ReleaseShape& r, const Grid& grid, int subsample
     return out;
 }
 
+// Only the released cells are written (and their terrain made, terrain.hpp): the state
+// starts as zeros that are not written, so a small release on a large DEM leaves the
+// rest of the grid's memory untouched. Elsewhere h = 0 / normal_thickness = 0 as before.
 State state_at_rest(const Grid& grid, const Field2D& thickness, const TerrainFields& terrain) {
     State s(grid);
-    for (int j = 0; j < grid.ny; ++j)
-        for (int i = 0; i < grid.nx; ++i) s.h(i, j) = thickness(i, j) / terrain.normal_thickness(i, j);
+    int i0 = grid.nx, i1 = 0, j0 = grid.ny, j1 = 0;
+    for (int j = 0; j < grid.ny; ++j) {
+        const double* row = thickness.row(j);
+        for (int i = 0; i < grid.nx; ++i)
+            if (row[i] != 0.0) {
+                i0 = std::min(i0, i);
+                i1 = std::max(i1, i + 1);
+                j0 = std::min(j0, j);
+                j1 = std::max(j1, j + 1);
+            }
+    }
+    terrain.ensure(i0, i1, j0, j1);
+    for (int j = j0; j < j1; ++j)
+        for (int i = i0; i < i1; ++i)
+            if (thickness(i, j) != 0.0) s.h(i, j) = thickness(i, j) / terrain.normal_thickness(i, j);
     return s;
 }
 

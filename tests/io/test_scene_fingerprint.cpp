@@ -20,7 +20,7 @@ struct Scene {
     std::vector<std::uint8_t> sinks;
     std::vector<ProbeLocation> probes;
 
-    Scene() {
+    explicit Scene(bool on_demand = false) {
         grid.nx = 13;  // the padded rows are not a multiple of the four lanes
         grid.ny = 7;
         grid.dx = grid.dy = 2.0;
@@ -28,7 +28,9 @@ struct Scene {
         for (int j = 0; j < grid.ny; ++j)
             for (int i = 0; i < grid.nx; ++i)
                 z[static_cast<std::size_t>(j) * grid.nx + i] = 100.0 - 0.7 * i + 0.01 * i * j;
-        terrain = dem_terrain(grid, z, 9.81);
+        DemFrameOptions options;
+        options.on_demand = on_demand;
+        terrain = dem_terrain(grid, z, 9.81, options);
         initial = State(grid);
         initial.h(3, 2) = 1.5;
         sinks.assign(grid.cells(), 0);
@@ -100,6 +102,23 @@ TEST(SceneFingerprint, EachInputCounts) {
         std::swap(s.terrain.ax, s.terrain.ay);
         EXPECT_NE(s.fingerprint(), base) << "two fields exchanged";
     }
+}
+
+// Terrain made on demand is identified by its elevation: the digest does not depend on
+// which tiles a run has made so far, and it differs from the same scene's complete
+// terrain (which is hashed field by field).
+TEST(SceneFingerprint, TerrainMadeOnDemandCountsByItsElevation) {
+    const Scene on_demand(true);
+    ASSERT_TRUE(on_demand.terrain.on_demand);
+    const std::string base = on_demand.fingerprint();
+    on_demand.terrain.ensure(0, 3, 0, 3);
+    EXPECT_EQ(on_demand.fingerprint(), base) << "a tile made";
+    on_demand.terrain.ensure_everywhere();
+    EXPECT_EQ(on_demand.fingerprint(), base) << "every tile made";
+    EXPECT_NE(Scene(false).fingerprint(), base);
+    Scene s(true);
+    s.terrain.elevation(4, 5) = with_bit_flipped(s.terrain.elevation(4, 5), 0);
+    EXPECT_NE(s.fingerprint(), base) << "elevation";
 }
 
 }  // namespace

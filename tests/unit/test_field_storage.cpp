@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <vector>
 
 #include "avalanche/core/field.hpp"
@@ -43,4 +44,39 @@ TEST(FieldStorage, FieldsCopyMoveAndTakeOrdinaryVectors) {
     CellVector<std::int32_t> flags(5'000'000, 3);
     EXPECT_EQ(address(flags.data()) % 64, 0u);
     EXPECT_EQ(flags.back(), 3);
+}
+
+namespace {
+// Resident memory of this process in bytes (Linux), or -1.
+long long resident_bytes() {
+    std::FILE* f = std::fopen("/proc/self/statm", "r");
+    if (!f) return -1;
+    long long pages = 0, resident = 0;
+    const int n = std::fscanf(f, "%lld %lld", &pages, &resident);
+    std::fclose(f);
+    return n == 2 ? resident * 4096 : -1;
+}
+}  // namespace
+
+// Fields of zeros are zero without being written: a large one holds no memory until its
+// cells are written (terrain made on demand, a state whose flow covers part of the grid),
+// and small ones are zeroed by the allocator.
+TEST(FieldStorage, ZeroFieldsAreZeroAndLargeOnesUntouchedUntilWritten) {
+    const Field2D small(10, 10, 2);
+    for (const double v : small.raw()) ASSERT_EQ(v, 0.0);
+    const CellVector<std::int32_t> flags(1000);
+    for (const std::int32_t v : flags) ASSERT_EQ(v, 0);
+    const long long before = resident_bytes();
+    if (before < 0) GTEST_SKIP() << "no /proc/self/statm";
+    Field2D large(4000, 2000, 2);  // 64 MB
+    large(10, 10) = 1.0;
+    large(3999, 1999) = 2.0;
+    const long long grown = resident_bytes() - before;
+    EXPECT_LT(grown, 16ll << 20) << "a field of zeros was written";
+    EXPECT_EQ(large(2000, 1000), 0.0);
+    EXPECT_EQ(large(3999, 1999), 2.0);
+    // Made with a value, every element is written.
+    const Field2D ones(100, 100, 2, 1.0);
+    EXPECT_EQ(ones(-2, -2), 1.0);
+    EXPECT_EQ(ones(101, 101), 1.0);
 }

@@ -171,6 +171,7 @@ TEST(DemFrame, UniformPlaneAccelerationIsSlopeConsistent) {
         for (int j = 0; j < g.ny; ++j)
             for (int i = 0; i < g.nx; ++i) z[static_cast<std::size_t>(j) * g.nx + i] = -g.x_center(i) * std::tan(th);
         const TerrainFields t = dem_terrain(g, z, kG);
+        t.ensure(2, 3, 1, 2);  // the cell read below (terrain made on demand)
         EXPECT_NEAR(t.ax(2, 1), kG * std::sin(th) * std::cos(th), 1e-12);
         EXPECT_NEAR(t.gn(2, 1), kG * std::cos(th), 1e-12);
         EXPECT_NEAR(t.normal_thickness(2, 1), std::cos(th), 1e-12);

@@ -5,6 +5,7 @@
 // pages (field_storage.hpp).
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -15,9 +16,12 @@ namespace avalanche {
 class Field2D {
 public:
     Field2D() = default;
+    // A field of zeros is not written: the storage comes zeroed (field_storage.hpp), so
+    // the memory of cells nobody writes is never touched.
     Field2D(int nx, int ny, int ghosts, double value = 0.0)
         : nx_(nx), ny_(ny), ng_(ghosts), stride_(nx + 2 * ghosts),
-          data_(static_cast<std::size_t>(nx + 2 * ghosts) * (ny + 2 * ghosts), value) {}
+          data_(is_positive_zero(value) ? FieldStorage(cells_with_ghosts(nx, ny, ghosts))
+                                        : FieldStorage(cells_with_ghosts(nx, ny, ghosts), value)) {}
 
     [[nodiscard]] int nx() const { return nx_; }
     [[nodiscard]] int ny() const { return ny_; }
@@ -69,6 +73,11 @@ public:
     }
 
 private:
+    static std::size_t cells_with_ghosts(int nx, int ny, int ghosts) {
+        return static_cast<std::size_t>(nx + 2 * ghosts) * static_cast<std::size_t>(ny + 2 * ghosts);
+    }
+    static bool is_positive_zero(double v) { return v == 0.0 && !std::signbit(v); }
+
     int nx_ = 0, ny_ = 0, ng_ = 0, stride_ = 0;
     FieldStorage data_;
 };

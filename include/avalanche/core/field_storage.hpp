@@ -8,8 +8,19 @@
 // "A new machine", "Setup of a large grid"). The values, and so the results, are the
 // same to the bit.
 // Arrays under kHugePageMinBytes stay in small pages.
+//
+// Every array comes zeroed, and an element made without a value (std::vector's
+// value-initialisation: CellVector<double>(n), resize) is not written: it keeps the
+// zero. Large arrays are fresh anonymous mappings, zero without being written, so a
+// field of zeros costs no memory until its cells are written -- on a large DEM the
+// cells a small flow never reaches are never touched (docs/performance.md, "The
+// terrain made where the flow goes"). Hence one rule: an array's elements made
+// without a value are zero only if that memory was never used before, so a vector
+// that shrank must be grown with a value (assign, resize(n, 0.0)), never resize(n).
 #include <cstddef>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace avalanche {
@@ -17,15 +28,16 @@ namespace avalanche {
 inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 inline constexpr std::size_t kHugePageMinBytes = std::size_t{4} << 20;
 
-// Raw bytes for a field, 64-byte aligned (a cache line, an AVX-512 vector); from
-// kHugePageMinBytes on, on a 2 MiB boundary and advised for huge pages (Linux;
-// elsewhere, or where the kernel declines, the memory is ordinary). Throws
-// std::bad_alloc. Free with free_field_bytes.
+// Zeroed bytes for a field, 64-byte aligned (a cache line, an AVX-512 vector); from
+// kHugePageMinBytes on, a mapping of its own on a 2 MiB boundary, advised for huge
+// pages (Linux; elsewhere, or where the kernel declines, the memory is ordinary).
+// Throws std::bad_alloc. Free with free_field_bytes and the same size.
 void* allocate_field_bytes(std::size_t bytes);
-void free_field_bytes(void* p) noexcept;
+void free_field_bytes(void* p, std::size_t bytes) noexcept;
 
 template <class T>
 struct FieldAllocator {
+    static_assert(std::is_trivially_default_constructible_v<T>, "zero bytes must be a value of T");
     using value_type = T;
     FieldAllocator() = default;
     template <class U>
@@ -34,7 +46,16 @@ struct FieldAllocator {
         if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
         return static_cast<T*>(allocate_field_bytes(n * sizeof(T)));
     }
-    void deallocate(T* p, std::size_t) noexcept { free_field_bytes(p); }
+    void deallocate(T* p, std::size_t n) noexcept { free_field_bytes(p, n * sizeof(T)); }
+    // Value-initialisation leaves the allocation's zero bytes as they are (see above).
+    template <class U>
+    void construct(U* p) noexcept {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
     template <class U>
     bool operator==(const FieldAllocator<U>&) const noexcept {
         return true;

@@ -29,11 +29,16 @@ struct DemFrameOptions {
     // Smooth the curvature with a 3x3 mean: the second differences of a DEM amplify
     // its noise by 1/dx^2, and the load N must not flicker from cell to cell.
     bool smooth_curvature = true;
+    // Compute the coefficients tile by tile where they are first needed
+    // (TerrainFields::ensure, terrain.hpp) rather than every cell at once: the same
+    // values, and a small flow on a large DEM leaves the rest of the terrain untouched.
+    bool on_demand = true;
 };
 
 // Terrain coefficients from a DEM on the grid, z in metres, solver orientation
 // (index j * nx + i, j = 0 the southern row). Gradients are central differences
-// (one-sided on the edges).
+// (one-sided on the edges). The elevation is set at once; the other fields are made on
+// demand unless options.on_demand is false.
 TerrainFields dem_terrain(const Grid& grid, const std::vector<double>& z, double gravity,
                           const DemFrameOptions& options = {});
 

@@ -14,7 +14,17 @@
 // DEM frame: horizontal grid, h vertical thickness, (u, v) horizontal velocity;
 //   a = -g grad z / (1 + |grad z|^2), p_x = g cos^2(theta) / (1 + z_x^2),
 //   g_n = g cos(theta), c = Hessian(z) / sqrt(1 + |grad z|^2), s = grad z.
+//
+// Terrain made on demand. A DEM frame's coefficients may be computed tile by tile
+// where the solver first needs them (dem_frame.hpp): on a large DEM a small flow then
+// never touches the memory of the terrain it does not reach (on the project's
+// machines first touching memory, not computing, was most of the setup of a large
+// scene). Every field but `elevation` then holds its values only over the tiles
+// made so far (zero elsewhere); whoever reads them calls ensure() for the cells it
+// reads first. The values are those of computing every cell at once, to the bit.
 #include <cstddef>
+#include <functional>
+#include <memory>
 
 #include "avalanche/core/field.hpp"
 #include "avalanche/core/grid.hpp"
@@ -22,6 +32,33 @@
 namespace avalanche {
 
 enum class Frame { chute, dem };
+
+struct TerrainFields;
+
+// The tiles of a terrain made on demand: which are made, and how to make one.
+// ensure() may be called from several threads (batch scenarios share a scene): a
+// mutex orders the making and the readers of a tile after it.
+class TerrainTiles {
+public:
+    static constexpr int kTileCells = 64;  // a tile's width and height in cells
+    // make(t, i0, i1, j0, j1) fills cells [i0, i1) x [j0, j1) of every on-demand field
+    // of t and, where the range reaches an edge of the grid, the ghost cells beyond it.
+    using Maker = std::function<void(TerrainFields&, int, int, int, int)>;
+    TerrainTiles(const Grid& grid, Maker make);
+    ~TerrainTiles();
+    // Makes every tile meeting cells [i0, i1) x [j0, j1) (clamped to the grid) that is not
+    // made yet.
+    void ensure(TerrainFields& t, int i0, int i1, int j0, int j1);
+    [[nodiscard]] std::size_t tiles_made() const;
+    [[nodiscard]] std::size_t tiles() const { return made_.size(); }
+
+private:
+    struct Lock;
+    int tiles_x_ = 0, tiles_y_ = 0, nx_ = 0, ny_ = 0;
+    Maker make_;
+    std::vector<unsigned char> made_;
+    std::unique_ptr<Lock> lock_;
+};
 
 struct TerrainFields {
     Frame frame = Frame::chute;
@@ -33,14 +70,30 @@ struct TerrainFields {
     Field2D normal_thickness; // factor from the state's h to bed-normal thickness
     Field2D elevation;        // bed elevation (m); chute: height above the runout. Reports and the
                               // solver's energy cap use it: it must be the height whose gravity
-                              // potential g z the accelerations ax, ay derive from.
+                              // potential g z the accelerations ax, ay derive from. Always complete.
     bool has_curvature = false;
     bool has_metric = false;
+    // Set while some tiles are not made yet (see above); null once every value is in.
+    std::unique_ptr<TerrainTiles> on_demand;
+
+    TerrainFields() = default;
+    ~TerrainFields() = default;
+    TerrainFields(TerrainFields&&) noexcept = default;
+    TerrainFields& operator=(TerrainFields&&) noexcept = default;
+    // A copy holds every value (the source's missing tiles are made first).
+    TerrainFields(const TerrainFields& other);
+    TerrainFields& operator=(const TerrainFields& other);
 
     // Allocates every field for the grid (curvature and metric only if asked).
     void allocate(const Grid& g, bool curvature, bool metric);
     // Fills ghost cells by zero-gradient extension of every allocated field.
     void extend_to_ghosts();
+
+    // Makes the values of cells [i0, i1) x [j0, j1) (clamped to the grid; with the ghost
+    // cells beyond an edge the range reaches) if they are made on demand. Logically
+    // const: the values are fixed by the scene; only when they are computed changes.
+    void ensure(int i0, int i1, int j0, int j1) const;
+    void ensure_everywhere() const;
 };
 
 }  // namespace avalanche
