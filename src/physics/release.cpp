@@ -111,7 +111,7 @@ Field2D rasterize_release(const ReleaseShape& r, const Grid& grid, int subsample
 
 // Only the released cells are written (and their terrain made, terrain.hpp): the state
 // starts as zeros that are not written, so a small release on a large DEM leaves the
-// rest of the grid's memory untouched. Elsewhere h = 0 / normal_thickness = 0 as before.
+// rest of the grid's memory untouched. Elsewhere h stays 0, as 0 / normal_thickness was.
 State state_at_rest(const Grid& grid, const Field2D& thickness, const TerrainFields& terrain) {
     State s(grid);
     int i0 = grid.nx, i1 = 0, j0 = grid.ny, j1 = 0;
@@ -126,9 +126,15 @@ State state_at_rest(const Grid& grid, const Field2D& thickness, const TerrainFie
             }
     }
     terrain.ensure(i0, i1, j0, j1);
+    // The momenta of released cells are written too (zeros, as they were): the first step
+    // writes them anyway, and touched here their memory's first touch is the setup's, not
+    // the time loop's.
     for (int j = j0; j < j1; ++j)
         for (int i = i0; i < i1; ++i)
-            if (thickness(i, j) != 0.0) s.h(i, j) = thickness(i, j) / terrain.normal_thickness(i, j);
+            if (thickness(i, j) != 0.0) {
+                s.h(i, j) = thickness(i, j) / terrain.normal_thickness(i, j);
+                s.hu(i, j) = s.hv(i, j) = 0.0;
+            }
     return s;
 }
 
