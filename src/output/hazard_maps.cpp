@@ -79,8 +79,11 @@ void HazardMaps::accumulate(const SimulationView& v, int i0, int i1, int j0, int
     }
 }
 
+// The active box holds every wet cell (observer.hpp): outside it h = 0, nothing to
+// accumulate, and the terrain there may not even be made (terrain.hpp) -- reading it
+// would touch memory no run needs.
 void HazardMaps::on_start(const SimulationView& v) {
-    accumulate(v, 0, grid_.nx, 0, grid_.ny);
+    accumulate(v, v.box.i0, v.box.i1, v.box.j0, v.box.j1);
 }
 
 void HazardMaps::on_step(const SimulationView& v) {
@@ -88,8 +91,9 @@ void HazardMaps::on_step(const SimulationView& v) {
 }
 
 void HazardMaps::on_end(const SimulationView& v) {
-    for (int j = 0; j < grid_.ny; ++j)
-        for (int i = 0; i < grid_.nx; ++i) {
+    // deposit_ starts as zeros; only the active box can hold material (on_start).
+    for (int j = v.box.j0; j < v.box.j1; ++j)
+        for (int i = v.box.i0; i < v.box.i1; ++i) {
             const double hn = v.state.h(i, j) * v.terrain.normal_thickness(i, j);
             // The deposit map shows material, not the thin-layer film.
             deposit_[static_cast<std::size_t>(j) * grid_.nx + i] = hn >= params_.h_threshold ? hn : 0.0;
