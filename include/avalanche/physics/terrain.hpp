@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "avalanche/core/field.hpp"
 #include "avalanche/core/grid.hpp"
@@ -73,7 +74,8 @@ struct TerrainFields {
                               // potential g z the accelerations ax, ay derive from. Always complete.
     bool has_curvature = false;
     bool has_metric = false;
-    // Set while some tiles are not made yet (see above); null once every value is in.
+    // Set when the fields are made on demand (see above; tiles not made yet hold zeros);
+    // null when every value was computed at once (the chute frame, a copy).
     std::unique_ptr<TerrainTiles> on_demand;
 
     TerrainFields() = default;
