@@ -80,14 +80,30 @@ void extend_to_ghosts_of(Field2D& f, int i0, int i1, int j0, int j1) {
 
 // The DEM frame's coefficients of the cells [i0, i1) x [j0, j1), from t.elevation.
 // The smoothed curvature of a cell is the mean of the raw curvature of its neighbours
-// in the grid, summed in the same order as over the whole grid at once.
+// in the grid, summed in the same order as over the whole grid at once; the raw
+// curvature is computed in the same pass as the other coefficients, over the range and
+// the one cell around it the smoothing reads (each cell's derivatives once).
 void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const DemFrameOptions& options,
                     int i0, int i1, int j0, int j1) {
-    for (int j = j0; j < j1; ++j) {
-        for (int i = i0; i < i1; ++i) {
+    const int m = t.has_curvature && options.smooth_curvature ? 1 : 0;
+    const int a0 = std::max(0, i0 - m), a1 = std::min(grid.nx, i1 + m);
+    const int b0 = std::max(0, j0 - m), b1 = std::min(grid.ny, j1 + m);
+    const int w = a1 - a0;
+    std::vector<double> raw[3];
+    if (t.has_curvature)
+        for (auto& r : raw) r.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(b1 - b0));
+    for (int j = b0; j < b1; ++j) {
+        for (int i = a0; i < a1; ++i) {
             const Derivatives dd = derivatives_at(grid, t.elevation, i, j);
             const double s2 = 1.0 + dd.zx * dd.zx + dd.zy * dd.zy;
             const double s = std::sqrt(s2);
+            if (t.has_curvature) {
+                const std::size_t k = static_cast<std::size_t>(j - b0) * w + (i - a0);
+                raw[0][k] = dd.zxx / s;
+                raw[1][k] = dd.zxy / s;
+                raw[2][k] = dd.zyy / s;
+            }
+            if (i < i0 || i >= i1 || j < j0 || j >= j1) continue;  // the smoothing's halo
             t.ax(i, j) = -gravity * dd.zx / s2;
             t.ay(i, j) = -gravity * dd.zy / s2;
             t.px(i, j) = gravity / (s2 * (1.0 + dd.zx * dd.zx));
@@ -99,22 +115,6 @@ void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const De
         }
     }
     if (t.has_curvature) {
-        // Raw curvature over the range and, for the smoothing, one cell around it.
-        const int m = options.smooth_curvature ? 1 : 0;
-        const int a0 = std::max(0, i0 - m), a1 = std::min(grid.nx, i1 + m);
-        const int b0 = std::max(0, j0 - m), b1 = std::min(grid.ny, j1 + m);
-        const int w = a1 - a0;
-        std::vector<double> raw[3];
-        for (auto& r : raw) r.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(b1 - b0));
-        for (int j = b0; j < b1; ++j)
-            for (int i = a0; i < a1; ++i) {
-                const Derivatives dd = derivatives_at(grid, t.elevation, i, j);
-                const double s = std::sqrt(1.0 + dd.zx * dd.zx + dd.zy * dd.zy);
-                const std::size_t k = static_cast<std::size_t>(j - b0) * w + (i - a0);
-                raw[0][k] = dd.zxx / s;
-                raw[1][k] = dd.zxy / s;
-                raw[2][k] = dd.zyy / s;
-            }
         Field2D* out[3] = {&t.cxx, &t.cxy, &t.cyy};
         for (int c = 0; c < 3; ++c) {
             const auto at = [&](int i, int j) { return raw[c][static_cast<std::size_t>(j - b0) * w + (i - a0)]; };
