@@ -34,10 +34,9 @@ void* allocate_field_bytes(std::size_t bytes) {
         const std::uintptr_t end = base + size + kHugePageBytes;
         if (end > aligned + size) munmap(reinterpret_cast<void*>(aligned + size), end - (aligned + size));
         void* p = reinterpret_cast<void*>(aligned);
-#if defined(MADV_HUGEPAGE)
-        // Only whole 2 MiB pages: the tail stays in small pages, so a field never holds
-        // more than its own size plus under 2 MiB. A refusal (THP off) leaves small pages.
-        (void)madvise(p, bytes / kHugePageBytes * kHugePageBytes, MADV_HUGEPAGE);
+#if defined(MADV_NOHUGEPAGE)
+        // Small pages until advise_written_whole, also where THP is "always".
+        (void)madvise(p, size, MADV_NOHUGEPAGE);
 #endif
         return p;
     }
@@ -48,6 +47,18 @@ void* allocate_field_bytes(std::size_t bytes) {
         throw std::bad_alloc();
     std::memset(p, 0, bytes);
     return p;
+}
+
+void advise_written_whole(void* p, std::size_t bytes) noexcept {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    // Only whole 2 MiB pages: the tail stays in small pages, so a field never holds more
+    // than its own size plus under 2 MiB. A refusal (THP off) leaves small pages.
+    if (p != nullptr && bytes >= kHugePageMinBytes)
+        (void)madvise(p, bytes / kHugePageBytes * kHugePageBytes, MADV_HUGEPAGE);
+#else
+    (void)p;
+    (void)bytes;
+#endif
 }
 
 void free_field_bytes(void* p, std::size_t bytes) noexcept {

@@ -152,6 +152,7 @@ TerrainFields dem_terrain(const Grid& grid, const std::vector<double>& z, double
     t.frame = Frame::dem;
     const auto field = [&] { return Field2D(grid.nx, grid.ny, kGhostLayers); };
     t.elevation = field();
+    t.elevation.advise_written_whole();
     t.elevation.set_interior(z);
     t.elevation.extend_to_ghosts();
     t.has_curvature = has_curvature(grid, t.elevation, options.curvature_tolerance);
@@ -166,6 +167,9 @@ TerrainFields dem_terrain(const Grid& grid, const std::vector<double>& z, double
             make_dem_cells(f, grid, gravity, options, i0, i1, j0, j1);
         });
     if (!options.on_demand) {
+        for (Field2D* f : {&t.ax, &t.ay, &t.px, &t.py, &t.gn, &t.sx, &t.sy, &t.normal_thickness, &t.cxx,
+                           &t.cxy, &t.cyy})
+            f->advise_written_whole();
         t.ensure_everywhere();
         t.on_demand.reset();
     }

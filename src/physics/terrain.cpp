@@ -71,7 +71,12 @@ TerrainFields& TerrainFields::operator=(const TerrainFields& other) {
 }
 
 void TerrainFields::allocate(const Grid& g, bool curvature, bool metric) {
-    const auto make = [&](double v) { return Field2D(g.nx, g.ny, kGhostLayers, v); };
+    // The caller writes every cell (an analytic terrain): huge pages (field_storage.hpp).
+    const auto make = [&](double v) {
+        Field2D f(g.nx, g.ny, kGhostLayers, v);
+        f.advise_written_whole();
+        return f;
+    };
     ax = make(0.0);
     ay = make(0.0);
     px = make(0.0);

@@ -6,6 +6,9 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "avalanche/core/field.hpp"
@@ -79,4 +82,54 @@ TEST(FieldStorage, ZeroFieldsAreZeroAndLargeOnesUntouchedUntilWritten) {
     const Field2D ones(100, 100, 2, 1.0);
     EXPECT_EQ(ones(-2, -2), 1.0);
     EXPECT_EQ(ones(101, 101), 1.0);
+}
+
+namespace {
+// The "THPeligible" line of /proc/self/smaps for the mapping holding p (Linux): 1 where
+// the kernel may back it with huge pages, 0 where not, -1 if unknown (no smaps, an
+// older kernel, or THP off on this machine).
+int huge_page_eligible(const void* p) {
+    std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string mode;
+    if (!std::getline(thp, mode) || mode.find("[never]") != std::string::npos) return -1;
+    std::ifstream smaps("/proc/self/smaps");
+    std::string line;
+    bool inside = false;
+    while (std::getline(smaps, line)) {
+        unsigned long long lo = 0, hi = 0;
+        char dash = 0;
+        std::istringstream head(line);
+        if (head >> std::hex >> lo >> dash >> hi && dash == '-') {
+            inside = address(p) >= lo && address(p) < hi;
+        } else if (inside && line.rfind("THPeligible:", 0) == 0) {
+            return std::stoi(line.substr(12));
+        }
+    }
+    return -1;
+}
+}  // namespace
+
+// A field written here and there (the state, terrain made tile by tile) holds a small
+// page per row it reaches: with 2 MiB pages each row written would make the kernel zero
+// 64 rows of this 4000-column field (field_storage.hpp). A field written whole (made
+// with a value, filled, or advised) may take huge pages.
+TEST(FieldStorage, OnlyFieldsWrittenWholeTakeHugePages) {
+    const long long before = resident_bytes();
+    if (before < 0) GTEST_SKIP() << "no /proc/self/statm";
+    Field2D sparse(4000, 2000, 2);  // 64 MB, 32 kB per row
+    for (int j = 0; j < 256; ++j) sparse(10, j) = 1.0;  // 256 small pages = 1 MiB
+    const long long grown = resident_bytes() - before;
+    EXPECT_LT(grown, 3ll << 20) << "rows written one cell each took huge pages";
+    EXPECT_EQ(sparse(10, 255), 1.0);
+    EXPECT_EQ(sparse(11, 255), 0.0);
+
+    const int unadvised = huge_page_eligible(sparse.raw().data());
+    const Field2D whole(4000, 2000, 2, 1.0);
+    Field2D copied(4000, 2000, 2);
+    copied.advise_written_whole();
+    const int advised = huge_page_eligible(whole.raw().data());
+    if (unadvised < 0 || advised < 0) GTEST_SKIP() << "THP off or not reported in /proc/self/smaps";
+    EXPECT_EQ(unadvised, 0);
+    EXPECT_EQ(advised, 1);
+    EXPECT_EQ(huge_page_eligible(copied.raw().data()), 1);
 }

@@ -1,8 +1,8 @@
 #pragma once
 // A scalar cell field on a Grid, padded with ghost layers on every side so that
 // stencils near the edges need no branches. Storage is one contiguous
-// vector, row-major (x fastest), so row sweeps vectorise; large fields sit on huge
-// pages (field_storage.hpp).
+// vector, row-major (x fastest), so row sweeps vectorise; a field written whole sits on
+// huge pages (field_storage.hpp).
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -17,11 +17,13 @@ class Field2D {
 public:
     Field2D() = default;
     // A field of zeros is not written: the storage comes zeroed (field_storage.hpp), so
-    // the memory of cells nobody writes is never touched.
+    // the memory of cells nobody writes is never touched. Any other value is written
+    // everywhere, on huge pages.
     Field2D(int nx, int ny, int ghosts, double value = 0.0)
         : nx_(nx), ny_(ny), ng_(ghosts), stride_(nx + 2 * ghosts),
-          data_(is_positive_zero(value) ? FieldStorage(cells_with_ghosts(nx, ny, ghosts))
-                                        : FieldStorage(cells_with_ghosts(nx, ny, ghosts), value)) {}
+          data_(cells_with_ghosts(nx, ny, ghosts)) {
+        if (!is_positive_zero(value)) fill(value);
+    }
 
     [[nodiscard]] int nx() const { return nx_; }
     [[nodiscard]] int ny() const { return ny_; }
@@ -39,7 +41,13 @@ public:
     double* row(int j) { return data_.data() + index(0, j); }
     [[nodiscard]] const double* row(int j) const { return data_.data() + index(0, j); }
 
-    void fill(double v) { std::fill(data_.begin(), data_.end(), v); }
+    void fill(double v) {
+        advise_written_whole();
+        std::fill(data_.begin(), data_.end(), v);
+    }
+    // Before every cell is written (a copy of the elevation, say): the field is offered
+    // for huge pages (field_storage.hpp says why only then).
+    void advise_written_whole() { avalanche::advise_written_whole(data_.data(), data_.size() * sizeof(double)); }
     FieldStorage& raw() { return data_; }
     [[nodiscard]] const FieldStorage& raw() const { return data_; }
 

@@ -1,13 +1,5 @@
 #pragma once
-// Storage of the grid-sized fields (Field2D, the regime flags). Large arrays start
-// on a 2 MiB boundary and are offered to the kernel for transparent huge pages
-// (madvise), because on the project's virtual machines first touching a grid's memory
-// 4 KiB page by 4 KiB page was most of the setup of a large scene: benchmark (d)'s
-// 2000 x 2000 DEM spent about 2 of its 2.0-2.6 s of setup in page faults and zeroing,
-// for a run of 0.06 s; with 2 MiB pages the setup took 0.38-1.5 s (docs/performance.md,
-// "A new machine", "Setup of a large grid"). The values, and so the results, are the
-// same to the bit.
-// Arrays under kHugePageMinBytes stay in small pages.
+// Storage of the grid-sized fields (Field2D, the regime flags).
 //
 // Every array comes zeroed, and an element made without a value (std::vector's
 // value-initialisation: CellVector<double>(n), resize) is not written: it keeps the
@@ -17,6 +9,19 @@
 // terrain made where the flow goes"). Hence one rule: an array's elements made
 // without a value are zero only if that memory was never used before, so a vector
 // that shrank must be grown with a value (assign, resize(n, 0.0)), never resize(n).
+//
+// Page size. A large array starts on a 2 MiB boundary but is left in 4 KiB pages
+// unless the code about to write it whole says so (advise_written_whole): a field the
+// flow writes here and there (the state, the terrain made tile by tile) first touches
+// a 4 KiB page per row it reaches, where a 2 MiB page would make the kernel zero 128
+// rows of a 2000-column grid for each field -- on benchmark (d), a small release on a
+// 2000 x 2000 DEM, the first tiles of terrain cost 0.1-0.2 s that way, its whole setup
+// 0.05 s without. A field written whole (a value everywhere, the elevation) is
+// offered for huge pages, where one fault and one zeroing per 2 MiB is cheapest (on
+// the Firecracker VMs of 2026-12-02, the setup of a fully touched 2000 x 2000 grid
+// took 0.38-1.5 s with them against 2.0-2.6 s without; docs/performance.md, "A new
+// machine", and "Pages by how a field is written"). The values, and so the results,
+// are the same to the bit either way.
 #include <cstddef>
 #include <new>
 #include <type_traits>
@@ -29,11 +34,18 @@ inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 inline constexpr std::size_t kHugePageMinBytes = std::size_t{4} << 20;
 
 // Zeroed bytes for a field, 64-byte aligned (a cache line, an AVX-512 vector); from
-// kHugePageMinBytes on, a mapping of its own on a 2 MiB boundary, advised for huge
-// pages (Linux; elsewhere, or where the kernel declines, the memory is ordinary).
+// kHugePageMinBytes on, a mapping of its own on a 2 MiB boundary, in small pages
+// (Linux: advised so even where THP is "always") until advise_written_whole.
 // Throws std::bad_alloc. Free with free_field_bytes and the same size.
 void* allocate_field_bytes(std::size_t bytes);
 void free_field_bytes(void* p, std::size_t bytes) noexcept;
+
+// Says that the bytes [p, p + bytes) of an array from allocate_field_bytes are about to
+// be written whole: an array of kHugePageMinBytes or more is offered to the kernel for
+// transparent huge pages (madvise; only its whole 2 MiB pages, so the tail stays small).
+// Call it before the first write: pages already touched stay as they are. Elsewhere
+// than Linux, or where the kernel declines (THP off), nothing changes.
+void advise_written_whole(void* p, std::size_t bytes) noexcept;
 
 template <class T>
 struct FieldAllocator {
