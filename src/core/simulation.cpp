@@ -236,7 +236,7 @@ RunStatistics Simulation::run() {
         SimulationCheckpoint c{L, state_, {}};
         for (auto* o : observers_) o->save(c.observers);
         // The solver's own carried state besides the fields: the cells' regimes.
-        const CellVector<RegimeFlags>& regime = stepper_.regime();
+        const CellVector<RegimeFlags> regime = stepper_.regime();
         std::vector<std::int64_t>& saved = c.observers.integers[kRegimeDataset];
         if (regime.empty())  // no advection yet: every cell starts active
             saved.assign(state_.h.raw().size(), kRegimeAtStart);

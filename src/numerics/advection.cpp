@@ -131,8 +131,10 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
     const int ng = kGhostLayers, lo = -ng, hi = grid_.nx + ng - 1, top = grid_.ny + ng - 1;
     const auto clamped = [&](int j) { return std::clamp(j, -ng, top); };  // rows, at the padding
     RegimeFlags* row = w.regime_row.data() + ng;  // column 0
-    // The row's previous regime, which regime_row replaces cell by cell.
-    std::copy_n(regime_.data() + s.h.index(ia, r), ib - ia, row + ia);
+    // The row's previous regime, which regime_row replaces cell by cell (regime_ keeps it
+    // in another form: stepper.hpp).
+    const RegimeFlags* kept = regime_.data() + s.h.index(ia, r);
+    std::transform(kept, kept + (ib - ia), row + ia, stored_regime);
     // The terms of rows r - 2 .. r + 2 (over the columns row r's x-differences read)
     // that the ring does not hold yet. The regime rows of a block of strips come in
     // ascending order, so the ring holds the rest; a new block starts with terms_end at
@@ -172,7 +174,7 @@ void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffer
     const bool held = (!first_block && r < w.block_j0 + kRegimeHeldRows) ||
                       (!last_block && r >= w.block_j1 - kRegimeHeldRows);
     if (!held) {
-        std::copy_n(row + ia, ib - ia, regime_.data() + s.h.index(ia, r));
+        std::transform(row + ia, row + ib, regime_.data() + s.h.index(ia, r), stored_regime);
         return;
     }
     const std::size_t q = w.held_rows.size();
@@ -498,7 +500,7 @@ void Stepper::advect(State& s, double tau) {
     // The regimes are computed row by row with the pressure stage (advect_strip) and
     // replace the previous ones in regime_ as they go, but for the rows near a block's
     // inner ends, which the neighbouring block also computes from the previous ones.
-    if (regime_.size() != s.h.raw().size()) regime_.assign(s.h.raw().size(), kRegimeAtStart);
+    if (regime_.size() != s.h.raw().size()) regime_ = CellVector<RegimeFlags>(s.h.raw().size());  // at start
     // Each thread takes a block of consecutive strips. Its first and last strips share
     // rows with the neighbouring blocks, whose strips read the old state there: their
     // updated rows wait in the thread's buffers until every block is done. The other
@@ -542,11 +544,12 @@ void Stepper::advect(State& s, double tau) {
     const ActiveBox per_cell = per_cell_box(b);  // the columns keep_regime_row held
     for (int t = 0; t < team; ++t) {
         const StripBuffers& sb = strips_[static_cast<std::size_t>(t)];
-        for (std::size_t q = 0; q < sb.held_rows.size(); ++q)
-            std::copy_n(sb.held_regime.data() + static_cast<std::ptrdiff_t>(q) * sb.stride +
-                            kGhostLayers + per_cell.i0,
-                        per_cell.i1 - per_cell.i0,
-                        regime_.data() + s.h.index(per_cell.i0, sb.held_rows[q]));
+        for (std::size_t q = 0; q < sb.held_rows.size(); ++q) {
+            const RegimeFlags* held = sb.held_regime.data() + static_cast<std::ptrdiff_t>(q) * sb.stride +
+                                      kGhostLayers + per_cell.i0;
+            std::transform(held, held + (per_cell.i1 - per_cell.i0),
+                           regime_.data() + s.h.index(per_cell.i0, sb.held_rows[q]), stored_regime);
+        }
     }
     for (int t = 0; t < team; ++t) {
         for (const StripBuffers::WaitingRows& wr : strips_[static_cast<std::size_t>(t)].waiting) {

@@ -93,6 +93,17 @@ void Stepper::shrink_box_to_wet(const State& s, const ActiveBox& search) {
     }
 }
 
+CellVector<RegimeFlags> Stepper::regime() const {
+    CellVector<RegimeFlags> r(regime_.size());
+    std::transform(regime_.begin(), regime_.end(), r.begin(), stored_regime);
+    return r;
+}
+
+void Stepper::set_regime(CellVector<RegimeFlags> r) {
+    std::transform(r.begin(), r.end(), r.begin(), stored_regime);
+    regime_ = std::move(r);
+}
+
 void Stepper::reset_active_box(const State& s) {
     shrink_box_to_wet(s, ActiveBox{0, grid_.nx, 0, grid_.ny});
 }

@@ -280,8 +280,8 @@ TEST(CheckpointRoundTrip, ResumeRefusesARegimeThatIsNotFlags) {
             return std::vector<double>(f.raw().begin(), f.raw().end());
         };
         sim.resume(loop, plain(state.h), plain(state.hu), plain(state.hv), observers);
-        return std::vector<std::int64_t>(sim.stepper().regime().begin(),
-                                         sim.stepper().regime().end());
+        const CellVector<RegimeFlags> restored = sim.stepper().regime();
+        return std::vector<std::int64_t>(restored.begin(), restored.end());
     };
     EXPECT_EQ(resume_with(saved), regime);
     CheckpointData bad = saved;

@@ -20,6 +20,9 @@ namespace avalanche {
 using RegimeFlags = std::int32_t;
 inline constexpr RegimeFlags kRegimeXActive = 1, kRegimeYActive = 2;
 inline constexpr RegimeFlags kRegimeAtStart = kRegimeXActive | kRegimeYActive;
+// The form in which the stepper keeps a grid's regimes (0 at start), and back: the
+// same function both ways.
+constexpr RegimeFlags stored_regime(RegimeFlags f) { return f ^ kRegimeAtStart; }
 
 // Rows the regime stage reads: the state (depth and momenta) of row r, and the depth
 // and y-momentum of the rows one (s, n) and two (ss, nn) below and above it; in the DEM
