@@ -137,9 +137,8 @@ void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const De
                 }
         }
     }
-    for (Field2D* f : {&t.ax, &t.ay, &t.px, &t.py, &t.gn, &t.cxx, &t.cxy, &t.cyy, &t.sx, &t.sy,
-                       &t.normal_thickness})
-        if (!f->empty()) extend_to_ghosts_of(*f, i0, i1, j0, j1);
+    for (Field2D TerrainFields::*f : kDerivedTerrainFields)
+        if (!(t.*f).empty()) extend_to_ghosts_of(t.*f, i0, i1, j0, j1);
 }
 
 }  // namespace
@@ -159,17 +158,17 @@ TerrainFields dem_terrain(const Grid& grid, const std::vector<double>& z, double
     t.has_metric = true;
     // Zero until made (Field2D's zeros are not written: memory nobody makes stays
     // untouched).
-    for (Field2D* f : {&t.ax, &t.ay, &t.px, &t.py, &t.gn, &t.sx, &t.sy, &t.normal_thickness}) *f = field();
-    if (t.has_curvature)
-        for (Field2D* f : {&t.cxx, &t.cxy, &t.cyy}) *f = field();
+    const auto curvature = [](Field2D TerrainFields::*f) {
+        return f == &TerrainFields::cxx || f == &TerrainFields::cxy || f == &TerrainFields::cyy;
+    };
+    for (Field2D TerrainFields::*f : kDerivedTerrainFields)
+        if (t.has_curvature || !curvature(f)) t.*f = field();
     t.on_demand = std::make_unique<TerrainTiles>(
         grid, [grid, gravity, options](TerrainFields& f, int i0, int i1, int j0, int j1) {
             make_dem_cells(f, grid, gravity, options, i0, i1, j0, j1);
         });
     if (!options.on_demand) {
-        for (Field2D* f : {&t.ax, &t.ay, &t.px, &t.py, &t.gn, &t.sx, &t.sy, &t.normal_thickness, &t.cxx,
-                           &t.cxy, &t.cyy})
-            f->advise_written_whole();
+        for (Field2D TerrainFields::*f : kDerivedTerrainFields) (t.*f).advise_written_whole();
         t.ensure_everywhere();
         t.on_demand.reset();
     }

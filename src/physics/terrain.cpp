@@ -52,17 +52,7 @@ TerrainFields& TerrainFields::operator=(const TerrainFields& other) {
     if (this == &other) return *this;
     other.ensure_everywhere();
     frame = other.frame;
-    ax = other.ax;
-    ay = other.ay;
-    px = other.px;
-    py = other.py;
-    gn = other.gn;
-    cxx = other.cxx;
-    cxy = other.cxy;
-    cyy = other.cyy;
-    sx = other.sx;
-    sy = other.sy;
-    normal_thickness = other.normal_thickness;
+    for (Field2D TerrainFields::*f : kDerivedTerrainFields) this->*f = other.*f;
     elevation = other.elevation;
     has_curvature = other.has_curvature;
     has_metric = other.has_metric;
@@ -94,8 +84,9 @@ void TerrainFields::allocate(const Grid& g, bool curvature, bool metric) {
 }
 
 void TerrainFields::extend_to_ghosts() {
-    for (Field2D* f : {&ax, &ay, &px, &py, &gn, &cxx, &cxy, &cyy, &sx, &sy, &normal_thickness, &elevation})
-        if (!f->empty()) f->extend_to_ghosts();
+    for (Field2D TerrainFields::*f : kDerivedTerrainFields)
+        if (!(this->*f).empty()) (this->*f).extend_to_ghosts();
+    if (!elevation.empty()) elevation.extend_to_ghosts();
 }
 
 // The fields are written through a cast of constness: what changes is the heap memory

@@ -22,6 +22,7 @@
 // scene). Every field but `elevation` then holds its values only over the tiles
 // made so far (zero elsewhere); whoever reads them calls ensure() for the cells it
 // reads first. The values are those of computing every cell at once, to the bit.
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -97,5 +98,15 @@ struct TerrainFields {
     void ensure(int i0, int i1, int j0, int j1) const;
     void ensure_everywhere() const;
 };
+
+// Every field of TerrainFields derived from the elevation (all but `elevation`; the
+// curvature and metric ones are empty where the frame has none): the one list that
+// copies, ghost extensions and the DEM frame's tiles loop over, so that a field added
+// to TerrainFields is added here and nowhere else.
+inline constexpr std::array<Field2D TerrainFields::*, 11> kDerivedTerrainFields{
+    &TerrainFields::ax,  &TerrainFields::ay,  &TerrainFields::px,
+    &TerrainFields::py,  &TerrainFields::gn,  &TerrainFields::cxx,
+    &TerrainFields::cxy, &TerrainFields::cyy, &TerrainFields::sx,
+    &TerrainFields::sy,  &TerrainFields::normal_thickness};
 
 }  // namespace avalanche
