@@ -112,7 +112,7 @@ int huge_page_eligible(const void* p) {
 // A field written here and there (the state, terrain made tile by tile) holds a small
 // page per row it reaches: with 2 MiB pages each row written would make the kernel zero
 // 64 rows of this 4000-column field (field_storage.hpp). A field written whole (made
-// with a value, filled, or advised) may take huge pages.
+// with a value, filled, advised, or a copy) may take huge pages.
 TEST(FieldStorage, OnlyFieldsWrittenWholeTakeHugePages) {
     const long long before = resident_bytes();
     if (before < 0) GTEST_SKIP() << "no /proc/self/statm";
@@ -132,4 +132,14 @@ TEST(FieldStorage, OnlyFieldsWrittenWholeTakeHugePages) {
     EXPECT_EQ(unadvised, 0);
     EXPECT_EQ(advised, 1);
     EXPECT_EQ(huge_page_eligible(copied.raw().data()), 1);
+    // A copy writes every cell, so it is advised too; and it holds the values.
+    const Field2D copy = sparse;
+    EXPECT_EQ(huge_page_eligible(copy.raw().data()), 1);
+    EXPECT_EQ(copy(10, 255), 1.0);
+    EXPECT_EQ(copy(11, 255), 0.0);
+    Field2D assigned(10, 10, 2);
+    assigned = sparse;
+    EXPECT_EQ(huge_page_eligible(assigned.raw().data()), 1);
+    EXPECT_EQ(assigned.nx(), 4000);
+    EXPECT_EQ(assigned(10, 200), 1.0);
 }

@@ -25,6 +25,32 @@ public:
         if (!is_positive_zero(value)) fill(value);
     }
 
+    // A copy writes every cell: on huge pages (field_storage.hpp), where std::vector's copy
+    // would leave it in small ones. Assignment to a field of the same size reuses its
+    // memory.
+    Field2D(const Field2D& other)
+        : nx_(other.nx_), ny_(other.ny_), ng_(other.ng_), stride_(other.stride_),
+          data_(other.data_.size()) {
+        advise_written_whole();
+        std::copy(other.data_.begin(), other.data_.end(), data_.begin());
+    }
+    Field2D& operator=(const Field2D& other) {
+        if (this == &other) return *this;
+        if (data_.size() != other.data_.size()) {
+            data_ = FieldStorage(other.data_.size());
+            advise_written_whole();
+        }
+        std::copy(other.data_.begin(), other.data_.end(), data_.begin());
+        nx_ = other.nx_;
+        ny_ = other.ny_;
+        ng_ = other.ng_;
+        stride_ = other.stride_;
+        return *this;
+    }
+    Field2D(Field2D&&) noexcept = default;
+    Field2D& operator=(Field2D&&) noexcept = default;
+    ~Field2D() = default;
+
     [[nodiscard]] int nx() const { return nx_; }
     [[nodiscard]] int ny() const { return ny_; }
     [[nodiscard]] int ghosts() const { return ng_; }
