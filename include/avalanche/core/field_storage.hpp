@@ -16,7 +16,7 @@
 // a 4 KiB page per row it reaches, where a 2 MiB page would make the kernel zero 128
 // rows of a 2000-column grid for each field -- on benchmark (d), a small release on a
 // 2000 x 2000 DEM, the first tiles of terrain cost 0.1-0.2 s that way, its whole setup
-// 0.05 s without. A field written whole (a value everywhere, the elevation) is
+// 0.05 s without. A field written whole (a value everywhere, a copy, the elevation) is
 // offered for huge pages, where one fault and one zeroing per 2 MiB is cheapest (on
 // the Firecracker VMs of 2026-12-02, the setup of a fully touched 2000 x 2000 grid
 // took 0.38-1.5 s with them against 2.0-2.6 s without; docs/performance.md, "A new
