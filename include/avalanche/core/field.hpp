@@ -27,7 +27,7 @@ public:
 
     // A copy writes every cell: on huge pages (field_storage.hpp), where std::vector's copy
     // would leave it in small ones. Assignment to a field of the same size reuses its
-    // memory.
+    // memory; to one of another size it is a copy, moved in.
     Field2D(const Field2D& other)
         : nx_(other.nx_), ny_(other.ny_), ng_(other.ng_), stride_(other.stride_),
           data_(other.data_.size()) {
@@ -36,10 +36,7 @@ public:
     }
     Field2D& operator=(const Field2D& other) {
         if (this == &other) return *this;
-        if (data_.size() != other.data_.size()) {
-            data_ = FieldStorage(other.data_.size());
-            advise_written_whole();
-        }
+        if (data_.size() != other.data_.size()) return *this = Field2D(other);
         std::copy(other.data_.begin(), other.data_.end(), data_.begin());
         nx_ = other.nx_;
         ny_ = other.ny_;
