@@ -29,6 +29,9 @@ struct MapSpec {
     gis::SampleType type = gis::SampleType::float32;
     double nodata = kNodata;
     bool thickness = false;  // holds a thickness: say which
+    // What a quick-look pixel of several cells shows (large grids): the largest value,
+    // but the earliest arrival.
+    gis::QuicklookBlock block = gis::QuicklookBlock::maximum;
 };
 
 // Cells never reached are nodata in the maps of maxima, so that QGIS draws only the
@@ -67,7 +70,8 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
           gis::pressure_ramp({1.0, out.pressure_low_kpa, 10.0, out.pressure_high_kpa, 100.0})},
          [&] { return masked(in.maps.max_pressure(), depth, out.h_threshold); }},
         {{"arrival_time", "first time the depth reached the hazard threshold", "s",
-          gis::arrival_time_ramp(std::max(in.stats.simulated_time, 1e-9))},
+          gis::arrival_time_ramp(std::max(in.stats.simulated_time, 1e-9)), gis::SampleType::float32,
+          kNodata, false, gis::QuicklookBlock::minimum},
          [&] {
              std::vector<double> arrival = in.maps.arrival_time();
              for (double& a : arrival)
@@ -109,7 +113,7 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
         gis::write_geotiff((d / tif).string(), geo, values, band, spec.type);
         gis::write_qml((d / (spec.name + ".qml")).string(), spec.ramp);
         gis::write_quicklook_png_over((d / (spec.name + ".png")).string(), geo, values, shade,
-                                      spec.ramp, spec.nodata);
+                                      spec.ramp, spec.nodata, spec.block);
         return {tif, spec.name + ".qml", spec.name + ".png"};
     };
     // The computational DEM: the terrain the solver saw, on its grid.

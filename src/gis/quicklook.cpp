@@ -48,21 +48,79 @@ std::vector<double> hillshade(const Grid& g, const std::vector<double>& z, doubl
     return shade;
 }
 
+int quicklook_cells_per_pixel(const Grid& grid) {
+    const int longest = std::max(grid.nx, grid.ny);
+    return std::max(1, (longest + kQuicklookMaxPixels - 1) / kQuicklookMaxPixels);
+}
+
+namespace {
+
+// What a quick-look draws: a value and a hillshade tone per pixel, on the grid of its
+// pixels (solver orientation, like the maps).
+struct Picture {
+    Grid grid;
+    std::vector<double> values, shade;
+};
+
+// The picture of blocks of f x f cells (f > 1): per block the `block` of its valid values
+// (nodata when none is) and the mean of its cells' hillshade.
+Picture in_blocks(const Grid& g, const std::vector<double>& values, const std::vector<double>& shade,
+                  double nodata, QuicklookBlock block, int f) {
+    Picture p;
+    p.grid = g;
+    p.grid.nx = (g.nx + f - 1) / f;
+    p.grid.ny = (g.ny + f - 1) / f;
+    p.grid.dx = g.dx * f;
+    p.grid.dy = g.dy * f;
+    p.values.resize(p.grid.cells());
+    p.shade.resize(p.grid.cells());
+    const bool largest = block == QuicklookBlock::maximum;
+    for (int bj = 0; bj < p.grid.ny; ++bj) {
+        const int j0 = bj * f, j1 = std::min(j0 + f, g.ny);
+        for (int bi = 0; bi < p.grid.nx; ++bi) {
+            const int i0 = bi * f, i1 = std::min(i0 + f, g.nx);
+            double tone = 0.0, chosen = nodata;
+            bool any = false;
+            for (int j = j0; j < j1; ++j)
+                for (int i = i0; i < i1; ++i) {
+                    const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
+                    tone += shade[k];
+                    const double v = values[k];
+                    if (v == nodata || !std::isfinite(v)) continue;
+                    if (!any || (largest ? v > chosen : v < chosen)) chosen = v;
+                    any = true;
+                }
+            const std::size_t b = static_cast<std::size_t>(bj) * p.grid.nx + bi;
+            p.values[b] = chosen;
+            p.shade[b] = tone / static_cast<double>((j1 - j0) * (i1 - i0));
+        }
+    }
+    return p;
+}
+
+}  // namespace
+
 void write_quicklook_png(const std::string& path, const GeoGrid& geo,
                          const std::vector<double>& values, const std::vector<double>& elevation,
-                         const ColorRamp& ramp, double nodata) {
+                         const ColorRamp& ramp, double nodata, QuicklookBlock block) {
     if (elevation.size() != geo.grid.cells())
         throw OutputError(path, "map and elevation sizes differ from the grid");
-    write_quicklook_png_over(path, geo, values, hillshade(geo.grid, elevation), ramp, nodata);
+    write_quicklook_png_over(path, geo, values, hillshade(geo.grid, elevation), ramp, nodata, block);
 }
 
 void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
-                              const std::vector<double>& values, const std::vector<double>& shade,
-                              const ColorRamp& ramp, double nodata) {
+                              const std::vector<double>& values_of_cells,
+                              const std::vector<double>& shade_of_cells, const ColorRamp& ramp,
+                              double nodata, QuicklookBlock block) {
     detail::GdalErrorScope errors;
-    const Grid& g = geo.grid;
-    if (values.size() != g.cells() || shade.size() != g.cells())
+    if (values_of_cells.size() != geo.grid.cells() || shade_of_cells.size() != geo.grid.cells())
         throw OutputError(path, "map and hillshade sizes differ from the grid");
+    const int f = quicklook_cells_per_pixel(geo.grid);
+    Picture blocks;
+    if (f > 1) blocks = in_blocks(geo.grid, values_of_cells, shade_of_cells, nodata, block, f);
+    const Grid& g = f > 1 ? blocks.grid : geo.grid;
+    const std::vector<double>& values = f > 1 ? blocks.values : values_of_cells;
+    const std::vector<double>& shade = f > 1 ? blocks.shade : shade_of_cells;
     std::vector<std::uint8_t> rgb[3];
     for (auto& c : rgb) c.resize(g.cells());
     for (std::size_t k = 0; k < g.cells(); ++k) {

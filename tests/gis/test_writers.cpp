@@ -2,6 +2,7 @@
 #include <cpl_minixml.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -223,6 +224,86 @@ TEST(Quicklook, PngIsColouredWhereTheMapHasValues) {
     EXPECT_EQ(pixel(1, 39, 29), pixel(2, 39, 29));
     GDALClose(ds);
     EXPECT_FALSE(std::filesystem::exists(tmp.file("max_depth.png.aux.xml")));
+}
+
+TEST(Quicklook, CellsPerPixelKeepTheLongestSideWithinTheLimit) {
+    const auto f = [](int nx, int ny) { return quicklook_cells_per_pixel(Grid{nx, ny, 1.0, 1.0, 0.0, 0.0}); };
+    EXPECT_EQ(f(kQuicklookMaxPixels, 10), 1);
+    EXPECT_EQ(f(10, kQuicklookMaxPixels), 1);
+    EXPECT_EQ(f(kQuicklookMaxPixels + 1, 10), 2);
+    EXPECT_EQ(f(10, 2 * kQuicklookMaxPixels), 2);
+    EXPECT_EQ(f(2 * kQuicklookMaxPixels + 1, 3), 3);
+}
+
+// A grid longer than kQuicklookMaxPixels: 3 x 3 cells a pixel. A block's colour is that
+// of its largest valid value (its smallest for arrival times), so that one cell of flow
+// shows; a block without one is the grey of its mean hillshade.
+TEST(Quicklook, LargeGridIsDrawnInBlocksShowingTheirLargestValue) {
+    TempDir tmp;
+    const int nx = 2 * kQuicklookMaxPixels + 4, ny = 5;  // 1367 x 2 pixels, the last ones cut short
+    ASSERT_EQ(quicklook_cells_per_pixel(Grid{nx, ny, 1.0, 1.0, 0.0, 0.0}), 3);
+    GeoGrid geo = utm_grid(nx, ny);
+    const double nodata = -9999.0;
+    std::vector<double> shade(geo.grid.cells(), 0.5), depth(geo.grid.cells(), nodata);
+    const auto at = [&](int i, int j) -> double& { return depth[static_cast<std::size_t>(j) * nx + i]; };
+    // Pixel (10, south row): one cell of 3 m among nodata. Pixel (20, south row): 0.2 m
+    // and 3 m. Pixel (30, south row): 0.2 m alone. Pixel (1366, north row): the cut-short
+    // corner block (2 x 2 cells), one cell of 3 m.
+    at(31, 1) = 3.0;
+    at(60, 0) = 0.2, at(62, 2) = 3.0;
+    at(91, 2) = 0.2;
+    at(nx - 1, ny - 1) = 3.0;
+    shade[static_cast<std::size_t>(4) * nx + 1] = 1.0;  // pixel (0, north row): 0.5 + 0.5 / 6
+    // The same values one pixel per cell, as references for the colours.
+    const GeoGrid one = utm_grid(4, 1);
+    write_quicklook_png_over(tmp.file("blocks.png"), geo, depth, shade, depth_ramp(), nodata);
+    write_quicklook_png_over(tmp.file("cells.png"), one, {3.0, 0.2, nodata, nodata},
+                             {0.5, 0.5, 0.5, 0.5 + 0.5 / 6.0}, depth_ramp(), nodata);
+    GDALAllRegister();
+    GDALDataset* blocks = GDALDataset::Open(tmp.file("blocks.png").c_str(), GDAL_OF_RASTER);
+    GDALDataset* cells = GDALDataset::Open(tmp.file("cells.png").c_str(), GDAL_OF_RASTER);
+    ASSERT_NE(blocks, nullptr);
+    ASSERT_NE(cells, nullptr);
+    EXPECT_EQ(blocks->GetRasterXSize(), 1367);
+    EXPECT_EQ(blocks->GetRasterYSize(), 2);
+    const auto rgb = [](GDALDataset* ds, int col, int row) {
+        std::array<int, 3> c{};
+        for (int b = 0; b < 3; ++b) {
+            unsigned char v = 0;
+            EXPECT_EQ(ds->GetRasterBand(b + 1)->RasterIO(GF_Read, col, row, 1, 1, &v, 1, 1, GDT_Byte,
+                                                         0, 0, nullptr),
+                      CE_None);
+            c[static_cast<std::size_t>(b)] = v;
+        }
+        return c;
+    };
+    // PNG row 1 is the south row of blocks, row 0 the north one.
+    const auto deep = rgb(cells, 0, 0), shallow = rgb(cells, 1, 0), grey = rgb(cells, 2, 0);
+    EXPECT_NE(deep, shallow);
+    EXPECT_NE(deep, grey);
+    EXPECT_EQ(rgb(blocks, 10, 1), deep);
+    EXPECT_EQ(rgb(blocks, 20, 1), deep);
+    EXPECT_EQ(rgb(blocks, 30, 1), shallow);
+    EXPECT_EQ(rgb(blocks, 1366, 0), deep);
+    EXPECT_EQ(rgb(blocks, 40, 1), grey);
+    EXPECT_EQ(rgb(blocks, 0, 0), rgb(cells, 3, 0));  // the hillshade averaged over 3 x 2 cells
+    GDALClose(blocks);
+
+    // Arrival times: the earliest of a block (0.2 s, not 3 s, at pixel 20).
+    write_quicklook_png_over(tmp.file("arrival.png"), geo, depth, shade, arrival_time_ramp(5.0),
+                             nodata, QuicklookBlock::minimum);
+    write_quicklook_png_over(tmp.file("arrival_cells.png"), one, {3.0, 0.2, nodata, nodata},
+                             {0.5, 0.5, 0.5, 0.5}, arrival_time_ramp(5.0), nodata);
+    GDALDataset* arrival = GDALDataset::Open(tmp.file("arrival.png").c_str(), GDAL_OF_RASTER);
+    GDALDataset* arrival_cells = GDALDataset::Open(tmp.file("arrival_cells.png").c_str(), GDAL_OF_RASTER);
+    ASSERT_NE(arrival, nullptr);
+    ASSERT_NE(arrival_cells, nullptr);
+    EXPECT_NE(rgb(arrival_cells, 0, 0), rgb(arrival_cells, 1, 0));
+    EXPECT_EQ(rgb(arrival, 20, 1), rgb(arrival_cells, 1, 0));
+    EXPECT_EQ(rgb(arrival, 10, 1), rgb(arrival_cells, 0, 0));
+    GDALClose(arrival);
+    GDALClose(arrival_cells);
+    GDALClose(cells);
 }
 
 }  // namespace

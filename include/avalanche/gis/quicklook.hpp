@@ -16,17 +16,40 @@ namespace avalanche::gis {
 std::vector<double> hillshade(const Grid& grid, const std::vector<double>& elevation,
                               double azimuth_deg = 315.0, double altitude_deg = 45.0);
 
-// Writes an RGB PNG (north at the top, one pixel per cell): grey hillshade, with
-// `values` coloured by `ramp` where they differ from `nodata` and the ramp draws them.
-// Written through GDAL's PNG driver (MEM dataset + CreateCopy) to "<path>.part", then
-// renamed. OutputError on failure or size mismatch.
+// The longest side of a quick-look, in pixels: about a screen's width. A grid longer
+// than this is drawn with an integer number of cells per pixel (quicklook_cells_per_pixel).
+// The quick-look is a preview (the report shows it about 640 px wide); the GeoTIFF
+// holds every cell. On a 1756 x 2068 grid the PNGs at one pixel per cell were half of
+// the products' time and 11 of report.html's 14 MB (docs/performance.md, "Quick-looks").
+inline constexpr int kQuicklookMaxPixels = 2048;
+
+// Cells per pixel side of a grid's quick-look: 1 up to kQuicklookMaxPixels cells on the
+// longest side, else the smallest integer that brings it within that.
+[[nodiscard]] int quicklook_cells_per_pixel(const Grid& grid);
+
+// What one pixel of a quick-look drawn in blocks of cells shows of its cells' values.
+enum class QuicklookBlock {
+    maximum,  // the largest valid value (depths, speeds, pressures, classes, frequencies)
+    minimum,  // the smallest valid value (arrival times: the earliest)
+};
+
+// Writes an RGB PNG (north at the top): grey hillshade, with `values` coloured by
+// `ramp` where they differ from `nodata` and the ramp draws them. One pixel per cell
+// up to kQuicklookMaxPixels cells on the grid's longest side; beyond, each pixel is a
+// block of f x f cells (f = quicklook_cells_per_pixel; the blocks at the east and north
+// edges may be cut short), coloured by `block` of its cells' valid values (no colour
+// when it has none) over the mean of its hillshade, so that a flow one cell wide still
+// shows. Written through GDAL's PNG driver (MEM dataset + CreateCopy) to
+// "<path>.part", then renamed. OutputError on failure or size mismatch.
 void write_quicklook_png(const std::string& path, const GeoGrid& geo,
                          const std::vector<double>& values, const std::vector<double>& elevation,
-                         const ColorRamp& ramp, double nodata);
+                         const ColorRamp& ramp, double nodata,
+                         QuicklookBlock block = QuicklookBlock::maximum);
 // The same over a hillshade computed once by the caller (hillshade above), for several
 // maps of one terrain: `shade` in [0, 1], one value per cell.
 void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
                               const std::vector<double>& values, const std::vector<double>& shade,
-                              const ColorRamp& ramp, double nodata);
+                              const ColorRamp& ramp, double nodata,
+                              QuicklookBlock block = QuicklookBlock::maximum);
 
 }  // namespace avalanche::gis
