@@ -49,11 +49,7 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity
         a->assign(static_cast<std::size_t>(stride) * kRegimeRingRows, 0.0);
     held_regime.assign(static_cast<std::size_t>(stride) * 2 * kRegimeHeldRows, kRegimeAtStart);
     held_rows.reserve(2 * kRegimeHeldRows);
-    for (WaitingRows& wr : waiting) {
-        wr.stride = stride;
-        for (auto* a : {&wr.h, &wr.hu, &wr.hv})
-            a->assign(static_cast<std::size_t>(stride) * static_cast<std::size_t>(kStripRows), 0.0);
-    }
+    held_cols.reserve(2 * kRegimeHeldRows);
 }
 
 std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
@@ -177,25 +173,22 @@ void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffer
         std::transform(row + ia, row + ib, regime_.data() + s.h.index(ia, r), stored_regime);
         return;
     }
+    // A segment computes each of its rows' regimes once (its strips carry their rows
+    // on), so it holds at most kRegimeHeldRows rows at each inner end; a thread holds
+    // those of each of its segments.
     const std::size_t q = w.held_rows.size();
-    // A block computes each of its rows' regimes once (its strips carry their rows on),
-    // so it holds at most kRegimeHeldRows rows at each inner end: held_regime's capacity.
-    // Past it the copy below would write beyond the buffer; stop instead.
-    if (q >= 2 * static_cast<std::size_t>(kRegimeHeldRows)) {
-        std::fputs("avalanche-hazard: internal error: more held regime rows than the buffer holds\n",
-                   stderr);
-        std::abort();
-    }
+    const std::size_t need = (q + 1) * static_cast<std::size_t>(w.stride);
+    if (w.held_regime.size() < need) w.held_regime.resize(need, kRegimeAtStart);
     w.held_rows.push_back(r);
+    w.held_cols.emplace_back(ia, ib);
     std::copy_n(row + ia, ib - ia,
                 w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + kGhostLayers + ia);
 }
 
 // ---------------------------------------------------------------- one strip
 
-void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
-                           int wait_slot) {
-    const ActiveBox b = box_;
+void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int Je,
+                           StripBuffers& w, StripBuffers::WaitingRows* wait) {
     const int ng = kGhostLayers, nx = grid_.nx, ny = grid_.ny;
     const bool waf = numerics_.scheme == Scheme::waf;
     const double hd = h_min_;
@@ -466,10 +459,14 @@ void Stepper::advect_strip(State& s, double tau, int J, int Je, StripBuffers& w,
     // thread's next strip reads none of them (it reads the stage rows it is handed), so
     // they can go into s at once, unless another thread's strip reads them (advect()).
     const std::size_t width = static_cast<std::size_t>(b.i1 - b.i0);
-    StripBuffers::WaitingRows* wait = wait_slot >= 0 ? &w.waiting[wait_slot] : nullptr;
     if (wait) {
         wait->j0 = J;
         wait->j1 = Je;
+        wait->i0 = b.i0;
+        wait->i1 = b.i1;
+        const std::size_t n = width * static_cast<std::size_t>(Je - J);
+        for (auto* a : {&wait->h, &wait->hu, &wait->hv})
+            if (a->size() < n) a->resize(n);
     }
     for (int r = J; r < Je; ++r) {
         const std::ptrdiff_t kw = w.k(b.i0, r);
@@ -498,34 +495,79 @@ void Stepper::advect(State& s, double tau) {
         w.carried_for = std::numeric_limits<int>::min();  // a new state: nothing carries over
     }
     // The regimes are computed row by row with the pressure stage (advect_strip) and
-    // replace the previous ones in regime_ as they go, but for the rows near a block's
-    // inner ends, which the neighbouring block also computes from the previous ones.
+    // replace the previous ones in regime_ as they go, but for the rows near a segment's
+    // inner ends, which the neighbouring segment also computes from the previous ones.
     if (regime_.size() != s.h.raw().size()) regime_ = CellVector<RegimeFlags>(s.h.raw().size());  // at start
-    // Each thread takes a block of consecutive strips. Its first and last strips share
-    // rows with the neighbouring blocks, whose strips read the old state there: their
-    // updated rows wait in the thread's buffers until every block is done. The other
-    // strips write theirs into s at once (advect_strip, step 7), so no second state
-    // is kept.
-    const int strips = (b.j1 - b.j0 + kStripRows - 1) / kStripRows;
-    const auto block_of = [strips](int t, int n) {  // strips [first, last) of thread t of n
-        return std::pair<int, int>{strips * t / n, strips * (t + 1) / n};
+    const bool regimes = material_.earth_pressure != EarthPressureModel::isotropic;
+
+    // The strips of the bands (make_bands) in row order, and the cells before each.
+    struct Strip {
+        std::size_t band;
+        int j0, j1;
     };
+    std::vector<Strip> strips;
+    std::vector<std::size_t> cells_before{0};
+    for (std::size_t q = 0; q < bands_.size(); ++q) {
+        const ActiveBox& band = bands_[q];
+        if (band.empty()) continue;
+        for (int j = band.j0; j < band.j1; j += kStripRows) {
+            strips.push_back({q, j, std::min(j + kStripRows, band.j1)});
+            cells_before.push_back(cells_before.back() + static_cast<std::size_t>(band.i1 - band.i0) *
+                                                             static_cast<std::size_t>(strips.back().j1 - j));
+        }
+    }
+    const int nstrips = static_cast<int>(strips.size());
+    // Thread t of n takes the strips from the one before which t / n of the cells lie.
+    const auto start_of = [&](int t, int n) {
+        if (t >= n) return nstrips;
+        const std::size_t target = cells_before.back() * static_cast<std::size_t>(t) / static_cast<std::size_t>(n);
+        return static_cast<int>(std::lower_bound(cells_before.begin(), cells_before.end() - 1, target) -
+                                cells_before.begin());
+    };
+    // The edge faces' outflow of the rows and columns no band reaches is zero.
+    const int nx = grid_.nx, ny = grid_.ny;
+    if (b.i0 == 0) std::fill(edge_outflow_[0].begin() + b.j0, edge_outflow_[0].begin() + b.j1, 0.0);
+    if (b.i1 == nx) std::fill(edge_outflow_[1].begin() + b.j0, edge_outflow_[1].begin() + b.j1, 0.0);
+    if (b.j0 == 0) std::fill(edge_outflow_[2].begin() + b.i0, edge_outflow_[2].begin() + b.i1, 0.0);
+    if (b.j1 == ny) std::fill(edge_outflow_[3].begin() + b.i0, edge_outflow_[3].begin() + b.i1, 0.0);
+
+    // Each thread takes consecutive strips; its strips of one band are a segment, whose
+    // strips hand their stage rows on (advect_strip) and whose first strip computes
+    // them afresh. A segment's first and last strips share rows with the neighbouring
+    // segments, whose strips read the old state there: their updated rows wait in the
+    // thread's buffers until every segment is done. The other strips write theirs into
+    // s at once (advect_strip, step 7), so no second state is kept.
     int team = 1;
 #pragma omp parallel if (threaded_)
     {
         const int n = omp_get_num_threads(), t = omp_get_thread_num();
 #pragma omp single
         team = n;
-        const auto [first, last] = block_of(t, n);
+        const int first = start_of(t, n), last = start_of(t + 1, n);
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
-        w.waiting[0].j1 = w.waiting[1].j1 = w.waiting[0].j0 = w.waiting[1].j0 = 0;
-        w.block_j0 = b.j0 + first * kStripRows;
-        w.block_j1 = std::min(b.j0 + last * kStripRows, b.j1);
+        w.waiting_used = 0;
         w.held_rows.clear();
+        w.held_cols.clear();
         for (int k = first; k < last; ++k) {
-            const int j = b.j0 + k * kStripRows;
-            const int slot = k == first && t > 0 ? 0 : (k == last - 1 && t < n - 1 ? 1 : -1);
-            advect_strip(s, tau, j, std::min(j + kStripRows, b.j1), w, slot);
+            const Strip& st = strips[static_cast<std::size_t>(k)];
+            const auto band_of = [&](int q) { return strips[static_cast<std::size_t>(q)].band; };
+            const bool starts = k == first || band_of(k - 1) != st.band;
+            const bool ends = k == last - 1 || band_of(k + 1) != st.band;
+            if (starts) {
+                w.carried_for = std::numeric_limits<int>::min();  // a new segment
+                int e = k;
+                while (e + 1 < last && band_of(e + 1) == st.band) ++e;
+                w.block_j0 = st.j0;
+                w.block_j1 = strips[static_cast<std::size_t>(e)].j1;
+            }
+            StripBuffers::WaitingRows* wait = nullptr;
+            if ((starts && k > 0) || (ends && k + 1 < nstrips)) {
+                if (static_cast<int>(w.waiting.size()) <= w.waiting_used) w.waiting.emplace_back();
+                wait = &w.waiting[static_cast<std::size_t>(w.waiting_used++)];
+            }
+            // The band's columns; its stages' row ranges are the box's (advect_strip).
+            const ActiveBox& band = bands_[st.band];
+            advect_strip(s, tau, ActiveBox{band.i0, band.i1, b.j0, b.j1}, st.j0, st.j1, w, wait);
         }
     }
     // Volume through the open edges: west, east, south, north, in that order.
@@ -540,25 +582,45 @@ void Stepper::advect(State& s, double tau) {
         for (int i = b.i0; i < b.i1; ++i) out += edge_outflow_[3][i];
     outflow_volume_ += out;
     // The regimes and the rows that waited.
-    const std::size_t w = static_cast<std::size_t>(b.i1 - b.i0);
-    const ActiveBox per_cell = per_cell_box(b);  // the columns keep_regime_row held
     for (int t = 0; t < team; ++t) {
         const StripBuffers& sb = strips_[static_cast<std::size_t>(t)];
         for (std::size_t q = 0; q < sb.held_rows.size(); ++q) {
+            const auto [c0, c1] = sb.held_cols[q];
             const RegimeFlags* held = sb.held_regime.data() + static_cast<std::ptrdiff_t>(q) * sb.stride +
-                                      kGhostLayers + per_cell.i0;
-            std::transform(held, held + (per_cell.i1 - per_cell.i0),
-                           regime_.data() + s.h.index(per_cell.i0, sb.held_rows[q]), stored_regime);
+                                      kGhostLayers + c0;
+            std::transform(held, held + (c1 - c0), regime_.data() + s.h.index(c0, sb.held_rows[q]),
+                           stored_regime);
         }
     }
     for (int t = 0; t < team; ++t) {
-        for (const StripBuffers::WaitingRows& wr : strips_[static_cast<std::size_t>(t)].waiting) {
+        const StripBuffers& sb = strips_[static_cast<std::size_t>(t)];
+        for (int q = 0; q < sb.waiting_used; ++q) {
+            const StripBuffers::WaitingRows& wr = sb.waiting[static_cast<std::size_t>(q)];
+            const std::size_t width = static_cast<std::size_t>(wr.i1 - wr.i0);
             for (int j = wr.j0; j < wr.j1; ++j) {
-                const std::ptrdiff_t k = wr.at(b.i0, j);
-                std::copy_n(wr.h.data() + k, w, s.h.row(j) + b.i0);
-                std::copy_n(wr.hu.data() + k, w, s.hu.row(j) + b.i0);
-                std::copy_n(wr.hv.data() + k, w, s.hv.row(j) + b.i0);
+                const std::ptrdiff_t k = wr.at(wr.i0, j);
+                std::copy_n(wr.h.data() + k, width, s.h.row(j) + wr.i0);
+                std::copy_n(wr.hu.data() + k, width, s.hu.row(j) + wr.i0);
+                std::copy_n(wr.hv.data() + k, width, s.hv.row(j) + wr.i0);
             }
+        }
+    }
+    // The whole box would have given every empty cell of its per-cell stage the regime
+    // at start (regime_row); the bands computed those of their own rows and columns.
+    if (regimes && bands_.size() > 1) {
+        const ActiveBox pc = per_cell_box(b);
+        std::size_t q = 0;  // the band that stores row r's regimes (keep_regime_row)
+        for (int r = pc.j0; r < pc.j1; ++r) {
+            while (q + 1 < bands_.size() && r >= bands_[q].j1) ++q;
+            RegimeFlags* row = regime_.data() + s.h.index(0, r);
+            const RegimeFlags at_start = stored_regime(kRegimeAtStart);
+            if (bands_[q].empty()) {
+                std::fill(row + pc.i0, row + pc.i1, at_start);
+                continue;
+            }
+            const ActiveBox own = per_cell_box(bands_[q]);
+            std::fill(row + pc.i0, row + own.i0, at_start);
+            std::fill(row + own.i1, row + pc.i1, at_start);
         }
     }
     fill_ghosts_near(s, box_);

@@ -67,8 +67,14 @@ double Stepper::energy_budget_in(const State& s, const ActiveBox& wet) const {
 
 void Stepper::shrink_box_to_wet(const State& s, const ActiveBox& search) {
     ActiveBox wet{grid_.nx, -1, grid_.ny, -1};
+    if (row_first_.size() != static_cast<std::size_t>(grid_.ny)) {
+        row_first_.assign(static_cast<std::size_t>(grid_.ny), grid_.nx);
+        row_last_.assign(static_cast<std::size_t>(grid_.ny), -1);
+    }
     for (int j = search.j0; j < search.j1; ++j) {
         const double* h = s.h.row(j);
+        row_first_[static_cast<std::size_t>(j)] = grid_.nx;
+        row_last_[static_cast<std::size_t>(j)] = -1;
         // The first and the last wet cell, searched from either end: a row of a flow
         // is mostly wet, so neither search goes far.
         int first = search.i0;
@@ -76,6 +82,8 @@ void Stepper::shrink_box_to_wet(const State& s, const ActiveBox& search) {
         if (first == search.i1) continue;
         int last = search.i1 - 1;
         while (!(h[last] > 0.0)) --last;
+        row_first_[static_cast<std::size_t>(j)] = first;
+        row_last_[static_cast<std::size_t>(j)] = last;
         wet.i0 = std::min(wet.i0, first);
         wet.i1 = std::max(wet.i1, last + 1);
         wet.j0 = std::min(wet.j0, j);
@@ -84,12 +92,59 @@ void Stepper::shrink_box_to_wet(const State& s, const ActiveBox& search) {
     if (wet.i1 < 0) wet = ActiveBox{0, 0, 0, 0};
     wet_box_ = wet;
     box_ = wet.widened(numerics_.active_margin, grid_.nx, grid_.ny);
+    make_bands();
     // The kernels read the terrain of the box and of kGhostLayers cells beyond it (its
     // per-cell rows, per_cell_box); two more cells for good measure. Terrain made on
     // demand (terrain.hpp) is made here, before any kernel of the step reads it.
     if (!box_.empty()) {
         const ActiveBox read = box_.widened(kGhostLayers + 2, grid_.nx, grid_.ny);
         terrain_.ensure(read.i0, read.i1, read.j0, read.j1);
+    }
+}
+
+// A band of rows of the box needs the columns of every cell that the box's margin
+// would put in the box for the material of its rows: the cells within active_margin
+// columns of a wet cell (h > 0) at most active_margin rows away. Outside those the
+// advection over the whole box changes nothing: every cell and every cell its stencil
+// reads is empty (h = hu = hv = 0), its fluxes are zero and its update gives it back
+// (its regime aside, which advect() resets as the whole box would). So the bands
+// give the whole box's result to the bit, whatever their height or number.
+void Stepper::make_bands() {
+    bands_.clear();
+    const ActiveBox b = box_;
+    if (b.empty()) return;
+    if (whole_box_advection_) {
+        bands_.push_back(b);
+        return;
+    }
+    const int m = numerics_.active_margin;
+    const int rows = kBandStrips * kStripRows;
+    for (int j0 = b.j0; j0 < b.j1; j0 += rows) {
+        const int j1 = std::min(j0 + rows, b.j1);
+        int first = grid_.nx, last = -1;
+        for (int j = std::max(j0 - m, wet_box_.j0); j < std::min(j1 + m, wet_box_.j1); ++j) {
+            first = std::min(first, row_first_[static_cast<std::size_t>(j)]);
+            last = std::max(last, row_last_[static_cast<std::size_t>(j)]);
+        }
+        ActiveBox band{b.i0, b.i0, j0, j1};  // nothing within reach: no columns
+        if (last >= first) band = {std::max(first - m, b.i0), std::min(last + 1 + m, b.i1), j0, j1};
+        // Merged with the band below where its columns would add little: a band's first
+        // strip computes the stage rows it shares with the band below afresh (advect()),
+        // about kRestartRows rows of its width.
+        constexpr int kRestartRows = 8;
+        if (!bands_.empty()) {
+            ActiveBox& below = bands_.back();
+            const ActiveBox both{below.empty() ? band.i0 : std::min(below.i0, band.i0),
+                                 below.empty() ? band.i1 : std::max(below.i1, band.i1), below.j0, j1};
+            const std::size_t apart = below.cells() + band.cells() +
+                                      static_cast<std::size_t>(kRestartRows) *
+                                          static_cast<std::size_t>(std::max(band.i1 - band.i0, 0));
+            if (!below.empty() && !band.empty() && both.cells() <= apart) {
+                below = both;
+                continue;
+            }
+        }
+        bands_.push_back(band);
     }
 }
 

@@ -14,6 +14,7 @@
 // The state's ghost cells are filled here from the boundary conditions.
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "avalanche/core/grid.hpp"
@@ -78,6 +79,12 @@ class Stepper {
     // 15-19 s, the chute 18-20 % and the valley 45-55 % faster (docs/performance.md).
     static constexpr std::size_t kMinCellsPerThreadedStep = 4000;
 
+    // The bands of the active box the advection works on this step (make_bands), and a
+    // switch that makes it work on the whole box as one band: for the tests that
+    // compare the two to the bit (test_active_bands.cpp).
+    [[nodiscard]] const std::vector<ActiveBox>& bands() const { return bands_; }
+    void set_whole_box_advection(bool whole) { whole_box_advection_ = whole; }
+
     // The operators, public for tests of the splitting.
     void advect(State& s, double tau);
     void apply_sources(State& s, double dt) const;
@@ -104,18 +111,19 @@ class Stepper {
         std::vector<double> fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
         std::vector<double> factor;                    // donor factors
         std::vector<double> out_h, out_hu, out_hv;     // the updated rows of the strip
-        // The updated rows of the block's first and last strips, which must wait until
-        // every block is done (advect()): rows [j0, j1), row j0 first, column 0 at ng.
+        // The updated rows of a segment's first and last strips, which must wait until
+        // every segment is done (advect()): rows [j0, j1), columns [i0, i1), row j0 first.
         struct WaitingRows {
-            int j0 = 0, j1 = 0;
-            std::ptrdiff_t stride = 0;
+            int j0 = 0, j1 = 0, i0 = 0, i1 = 0;
             std::vector<double> h, hu, hv;
-            // Index of cell (i, j), j0 <= j < j1, in h, hu, hv.
+            // Index of cell (i, j), j0 <= j < j1, i0 <= i < i1, in h, hu, hv.
             [[nodiscard]] std::ptrdiff_t at(int i, int j) const {
-                return static_cast<std::ptrdiff_t>(j - j0) * stride + kGhostLayers + i;
+                return static_cast<std::ptrdiff_t>(j - j0) * (i1 - i0) + (i - i0);
             }
         };
-        WaitingRows waiting[2];
+        // The thread's waiting strips of this advection: waiting[0 .. waiting_used).
+        std::vector<WaitingRows> waiting;
+        int waiting_used = 0;
         // The regime of the row the pressure stage computes next (column 0 at ng): its
         // previous regime, then the new one (regime_row_into).
         std::vector<RegimeFlags> regime_row;
@@ -132,13 +140,16 @@ class Stepper {
             const int slot = ((r % kRegimeRingRows) + kRegimeRingRows) % kRegimeRingRows;
             return a.data() + static_cast<std::ptrdiff_t>(slot) * stride + ng;
         }
-        // The thread's block of update rows [block_j0, block_j1): which new regime rows
-        // are the thread's to store, and which must wait (keep_regime_row).
+        // The update rows [block_j0, block_j1) of the segment the thread works on (its
+        // strips of one band, advect()): which new regime rows are the segment's to
+        // store, and which must wait (keep_regime_row).
         int block_j0 = 0, block_j1 = 0;
-        // New regime rows that must wait until every block is done: row held_rows[q] at
-        // held_regime[q * stride] (column 0 at ng), the per-cell stage's columns.
+        // New regime rows that must wait until every segment is done: row held_rows[q],
+        // columns [held_cols[q].first, held_cols[q].second), at held_regime[q * stride]
+        // (column 0 at ng).
         std::vector<RegimeFlags> held_regime;
         std::vector<int> held_rows;
+        std::vector<std::pair<int, int>> held_cols;
         std::vector<double> row_h, row_hu, row_hv, row_u, row_v,
             row_a;  // one row: the y-predictor's scratch (row_a: celerity in x)
         // Rows computed so far of each stage (end, exclusive), valid while the next
@@ -168,12 +179,15 @@ class Stepper {
     // thread's, at once or, where another thread still reads its previous regime, after
     // every block is done (advect()).
     void keep_regime_row(const State& s, int r, int ia, int ib, StripBuffers& w);
-    // Advects rows [j_begin, j_end) of s; the updated rows go into s itself, or into
-    // w.waiting[wait_slot] when wait_slot is 0 or 1.
-    void advect_strip(State& s, double tau, int j_begin, int j_end, StripBuffers& w,
-                      int wait_slot);
+    // Advects rows [j_begin, j_end) of s over the columns [b.i0, b.i1) of their band;
+    // b's rows are the box's, which bound every stage's rows. The updated rows go into
+    // s itself, or into *wait when it is given.
+    void advect_strip(State& s, double tau, const ActiveBox& b, int j_begin, int j_end,
+                      StripBuffers& w, StripBuffers::WaitingRows* wait);
     void thin_layer_velocities(State& s) const;
     void shrink_box_to_wet(const State& s, const ActiveBox& search);
+    // Cuts box_ into bands_ (from row_first_ and row_last_).
+    void make_bands();
     [[nodiscard]] double energy_budget_in(const State& s, const ActiveBox& wet) const;
     // Square of the largest true speed the energy budget allows at bed elevation z
     // (negative: the cell lies above what the material can reach).
@@ -191,6 +205,16 @@ class Stepper {
 
     ActiveBox box_;                     // cells updated this step
     ActiveBox wet_box_;                 // bounding box of cells with h > 0
+    // box_ cut into bands of kBandStrips strips (rows), each only as wide as the cells
+    // within the margin of the material of its rows and of the margin's rows beyond
+    // (adjacent bands merged where cutting saves little): the advection works on
+    // these (make_bands). A band without such cells has no columns.
+    std::vector<ActiveBox> bands_;
+    static constexpr int kBandStrips = 4;
+    bool whole_box_advection_ = false;
+    // Per grid row, the first and last column with h > 0 (last < first: none), set by
+    // shrink_box_to_wet for the rows it searched.
+    std::vector<int> row_first_, row_last_;
     std::vector<StripBuffers> strips_;  // one per thread
     // Rows per strip: the stage buffers of a strip (24 arrays of kStripRows + 8 rows)
     // stay in a core's cache for grids up to a few thousand cells wide.
