@@ -115,6 +115,7 @@ void Stepper::make_bands() {
     if (b.empty()) return;
     if (whole_box_advection_) {
         bands_.push_back(b);
+        band_columns_.assign(static_cast<std::size_t>(b.j1 - b.j0), {b.i0, b.i1});
         return;
     }
     const int m = numerics_.active_margin;
@@ -146,6 +147,10 @@ void Stepper::make_bands() {
         }
         bands_.push_back(band);
     }
+    band_columns_.resize(static_cast<std::size_t>(b.j1 - b.j0));
+    for (const ActiveBox& band : bands_)
+        for (int j = band.j0; j < band.j1; ++j)
+            band_columns_[static_cast<std::size_t>(j - b.j0)] = {band.i0, std::max(band.i0, band.i1)};
 }
 
 CellVector<RegimeFlags> Stepper::regime() const {
@@ -229,8 +234,10 @@ double Stepper::stable_dt(const State& s) const {
     const ActiveBox b = box_;
 #pragma omp parallel for reduction(max : rate) schedule(static) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
+        const auto [i0, i1] = band_columns_[static_cast<std::size_t>(j - b.j0)];
+        if (i0 >= i1) continue;
         rate = std::max(rate, cfl_rate_row(s.h.row(j), s.hu.row(j), s.hv.row(j), terrain_.px.row(j),
-                                           terrain_.py.row(j), kx, ky, grid_.dx, grid_.dy, h_min_, b.i0, b.i1));
+                                           terrain_.py.row(j), kx, ky, grid_.dx, grid_.dy, h_min_, i0, i1));
     }
     return rate > 0.0 ? numerics_.cfl / rate : std::numeric_limits<double>::infinity();
 }
@@ -293,8 +300,9 @@ void Stepper::thin_layer_velocities(State& s) const {
             }
             return true;
         };
-        for (int a = b.i0; a < b.i1; a += kThinBlock) {
-            const int e = std::min(a + kThinBlock, b.i1);
+        const auto [i0, i1] = band_columns_[static_cast<std::size_t>(j - b.j0)];
+        for (int a = i0; a < i1; a += kThinBlock) {
+            const int e = std::min(a + kThinBlock, i1);
             if (e - a == kThinBlock && settle_block(a)) continue;
             for (int i = a; i < e; ++i) {
                 const double h = hrow[i];
@@ -372,7 +380,8 @@ void Stepper::apply_sources(State& s, double dt) const {
                                  curv ? terrain_.cyy.row(j) : nullptr,
                                  metric ? terrain_.sx.row(j) : nullptr,
                                  metric ? terrain_.sy.row(j) : nullptr};
-        apply_sources_row(s.h.row(j), s.hu.row(j), s.hv.row(j), t, p, b.i0, b.i1);
+        const auto [i0, i1] = band_columns_[static_cast<std::size_t>(j - b.j0)];
+        if (i0 < i1) apply_sources_row(s.h.row(j), s.hu.row(j), s.hv.row(j), t, p, i0, i1);
     }
 }
 

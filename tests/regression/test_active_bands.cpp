@@ -52,7 +52,7 @@ BandedRun run(const Grid& g, const TerrainFields& t, bool whole_box, int steps) 
     const Field2D low = rasterize_release(ParaboloidRelease{{0.75 * g.x_max(), 0.94 * g.y_max()}, 30.0, 3.0}, g);
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) h0(i, j) += low(i, j);
-    BandedRun r{state_at_rest(g, h0, t)};
+    BandedRun r{state_at_rest(g, h0, t), 0.0, {}, 0, 1.0};
     const MaterialParams m;  // Savage-Hutter earth pressure: regimes carried
     const NumericsParams n;  // open edges
     Stepper stepper(g, t, m, n, 1e-4);

@@ -211,6 +211,10 @@ class Stepper {
     // these (make_bands). A band without such cells has no columns.
     std::vector<ActiveBox> bands_;
     static constexpr int kBandStrips = 4;
+    // Per row j of the box, the columns [first, second) of its band (at row j - box_.j0;
+    // first == second: none). The sources, the time step's rate and the thin-layer rule
+    // work on these too (stepper.cpp).
+    std::vector<std::pair<int, int>> band_columns_;
     bool whole_box_advection_ = false;
     // Per grid row, the first and last column with h > 0 (last < first: none), set by
     // shrink_box_to_wet for the rows it searched.
