@@ -7,8 +7,11 @@
 #include <cstdlib>
 #include <unistd.h>
 #include <exception>
+#include <fstream>
 #include <map>
+#include <string>
 
+#include "avalanche/app/openmp_wait.hpp"
 #include "avalanche/core/error.hpp"
 #include "avalanche/io/effective_config.hpp"
 #include "commands.hpp"
@@ -33,14 +36,16 @@ std::string join_command_line(int argc, char** argv) {
     return out;
 }
 
-// libgomp's default wait policy lets idle threads spin between parallel regions; the
-// solver opens several regions per step, often over small active areas, and on a
-// shared or busy machine the spinning threads stole the cores the work needed
-// (5-90x slower runs, docs/performance.md). The policy is read when the OpenMP
-// runtime loads, so it is set by re-executing once, unless the user chose one.
-void prefer_passive_openmp_wait(char** argv) {
-    if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;
-    ::setenv("OMP_WAIT_POLICY", "passive", 1);
+// How the OpenMP threads wait between parallel regions (openmp_wait.hpp says why),
+// unless the user chose: libgomp reads it when it loads, so it is set by re-executing
+// once.
+void choose_openmp_wait_for_run(char** argv) {
+    if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
+    std::ifstream file("/proc/loadavg");
+    std::string loadavg;
+    std::getline(file, loadavg);
+    const OpenmpWait wait = choose_openmp_wait(loadavg);
+    ::setenv(wait.variable.c_str(), wait.value.c_str(), 1);
     ::execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
 }
 
@@ -97,7 +102,7 @@ int dispatch(int argc, char** argv) {
 }  // namespace
 
 int run_cli(int argc, char** argv) {
-    prefer_passive_openmp_wait(argv);
+    choose_openmp_wait_for_run(argv);
     return dispatch(argc, argv);
 }
 
