@@ -7,13 +7,13 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
-#include <cmath>
 #include <cstring>
 #include <vector>
 
 #include "avalanche/numerics/stepper.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
+#include "rough_valley.hpp"
 
 using namespace avalanche;
 
@@ -21,23 +21,10 @@ namespace {
 
 constexpr double kG = 9.81;
 
-bool same_bits(const Field2D& a, const Field2D& b) {
-    return a.raw().size() == b.raw().size() &&
-           std::memcmp(a.raw().data(), b.raw().data(), a.raw().size() * sizeof(double)) == 0;
-}
+using avalanche::testing::same_bits;
 
-// A valley falling to the north (+y) with a rough surface.
-std::vector<double> rough_valley(const Grid& g) {
-    std::vector<double> z(g.cells());
-    for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) {
-            const double x = g.x_center(i), y = g.y_center(j);
-            const double across = 0.001 * (x - 0.5 * g.x_max()) * (x - 0.5 * g.x_max());
-            const double rough = 0.3 * std::sin(0.37 * i + 0.11 * j * j) * std::cos(0.23 * j + 0.05 * i * i);
-            z[static_cast<std::size_t>(j) * g.nx + i] = 1.0 * (g.y_max() - y) + across + rough;
-        }
-    return z;
-}
+// A valley falling to the north (+y) at 45 degrees, with a rough surface.
+std::vector<double> rough_valley(const Grid& g) { return avalanche::testing::rough_valley(g, 1.0, 0.001); }
 
 struct BandedRun {
     State state;

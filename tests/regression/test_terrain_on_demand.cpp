@@ -9,14 +9,13 @@
 // state of their own run on complete terrain.
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <cstring>
 #include <thread>
 #include <vector>
 
 #include "avalanche/numerics/stepper.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
+#include "rough_valley.hpp"
 
 using namespace avalanche;
 
@@ -24,24 +23,10 @@ namespace {
 
 constexpr double kG = 9.81;
 
-bool same_bits(const Field2D& a, const Field2D& b) {
-    return a.raw().size() == b.raw().size() &&
-           std::memcmp(a.raw().data(), b.raw().data(), a.raw().size() * sizeof(double)) == 0;
-}
+using avalanche::testing::same_bits;
 
-// A valley falling along y with a rough surface (curvature everywhere), sized so that
-// neither side is a multiple of the 64-cell tiles.
-std::vector<double> rough_valley(const Grid& g) {
-    std::vector<double> z(g.cells());
-    for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) {
-            const double x = g.x_center(i), y = g.y_center(j);
-            const double across = 0.002 * (x - 0.5 * g.x_max()) * (x - 0.5 * g.x_max());
-            const double rough = 0.3 * std::sin(0.37 * i + 0.11 * j * j) * std::cos(0.23 * j + 0.05 * i * i);
-            z[static_cast<std::size_t>(j) * g.nx + i] = 0.6 * (g.y_max() - y) + across + rough;
-        }
-    return z;
-}
+// A valley falling along y, sized so that neither side is a multiple of the 64-cell tiles.
+std::vector<double> rough_valley(const Grid& g) { return avalanche::testing::rough_valley(g, 0.6, 0.002); }
 
 void expect_same_terrain(const TerrainFields& a, const TerrainFields& b) {
     ASSERT_EQ(a.has_curvature, b.has_curvature);
