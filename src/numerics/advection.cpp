@@ -3,28 +3,28 @@
 // The operator has seven stages: pressure coefficients and invariant bounds per cell,
 // the transverse predictor in y and the WAF x-fluxes, the predictor in x and the WAF
 // y-fluxes, the boundary faces, the donor factors, and the conservative update. Here
-// the active box is cut into strips of kStripRows rows, and one thread runs all stages
-// for one strip into buffers of a few rows that stay in its cache, so the stage
-// fields need no grid-sized storage and only the state, the terrain and the updated
-// state cross memory (docs/numerics.md, "Implementation notes").
+// the active box is cut into bands of rows, each as wide as its rows' material needs
+// (Stepper::make_bands), the bands into strips of kStripRows rows, and one thread runs
+// all stages for one strip into buffers of a few rows that stay in its cache, so the
+// stage fields need no grid-sized storage and only the state, the terrain and the
+// updated state cross memory (docs/numerics.md, "Implementation notes", "Active region").
 //
 // A strip's update needs the stages on up to four rows beyond it. A thread takes
 // consecutive strips and hands the rows each stage field needs from one strip to the
-// next (StripBuffers::carry_rows); only the first strip of its block computes them
-// afresh, with the same inputs and expressions, so every value is the one the
-// whole-grid passes computed and the result does not depend on the strip height or
-// the thread count. A strip's updated rows go straight into the state: after the
-// update nothing of the strip's own rows is read again, by it or by the thread's next
-// strip (which reads the stage rows it is handed). Only the first and last strips of
-// a block, whose rows another thread's strip reads afresh, keep theirs in the
-// thread's buffers until every block is done (advect()).
+// next of the same band (StripBuffers::carry_rows); only the first strip of such a
+// segment computes them afresh, with the same inputs and expressions, so every value
+// is the one the whole-box passes computed and the result does not depend on the
+// strip height, the bands or the thread count. A strip's updated rows go straight
+// into the state: after the update nothing of the strip's own rows is read again, by
+// it or by the segment's next strip (which reads the stage rows it is handed). Only
+// the first and last strips of a segment, whose rows another segment's strip reads
+// afresh, keep theirs in the thread's buffers until every segment is done (advect()).
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
+#include <vector>
 
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/face_flux_rows.hpp"
