@@ -232,7 +232,10 @@ double Stepper::stable_dt(const State& s) const {
                                 k_.ky_given_kx_passive_active, k_.ky_given_kx_passive_passive});
     double rate = 0.0;  // max over cells of (|u| + a_x)/dx and (|v| + a_y)/dy
     const ActiveBox b = box_;
-#pragma omp parallel for reduction(max : rate) schedule(static) if (threaded_)
+    // The rows' band columns differ in width, so the rows are handed out eight at a time
+    // (here, in the thin-layer rule and the sources): a whole avaKot run at 5 m on two
+    // threads 8.0-8.4 s against 8.3-8.5 s with equal shares of rows.
+#pragma omp parallel for reduction(max : rate) schedule(dynamic, 8) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         const auto [i0, i1] = band_columns_[static_cast<std::size_t>(j - b.j0)];
         if (i0 >= i1) continue;
@@ -270,7 +273,7 @@ void Stepper::thin_layer_velocities(State& s) const {
     constexpr int kThinBlock = 16;
     const ActiveBox b = box_;
     const double hmin = h_min_;
-#pragma omp parallel for schedule(static) if (threaded_)
+#pragma omp parallel for schedule(dynamic, 8) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         const double* hrow = s.h.row(j);
         const double* h_south = s.h.row(j - 1);  // ghost rows at the edges
@@ -369,7 +372,7 @@ void Stepper::apply_sources(State& s, double dt) const {
     const int m = numerics_.source_substeps;
     const SourceRowParams p{dt / m, m, tan_delta_, numerics_.gravity, energy_budget_};
     const bool curv = terrain_.has_curvature, metric = terrain_.has_metric;
-#pragma omp parallel for schedule(static) if (threaded_)
+#pragma omp parallel for schedule(dynamic, 8) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         const SourceRowTerrain t{terrain_.ax.row(j),
                                  terrain_.ay.row(j),
