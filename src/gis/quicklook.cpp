@@ -55,6 +55,9 @@ int quicklook_cells_per_pixel(const Grid& grid) {
 
 namespace {
 
+// Whether the map gives the cell a value to colour (else only the hillshade shows).
+bool has_value(double v, double nodata) { return v != nodata && std::isfinite(v); }
+
 // What a quick-look draws: a value and a hillshade tone per pixel, on the grid of its
 // pixels (solver orientation, like the maps).
 struct Picture {
@@ -86,7 +89,7 @@ Picture in_blocks(const Grid& g, const std::vector<double>& values, const std::v
                     const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
                     tone += shade[k];
                     const double v = values[k];
-                    if (v == nodata || !std::isfinite(v)) continue;
+                    if (!has_value(v, nodata)) continue;
                     if (!any || (largest ? v > chosen : v < chosen)) chosen = v;
                     any = true;
                 }
@@ -126,7 +129,7 @@ void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
     for (std::size_t k = 0; k < g.cells(); ++k) {
         const double grey = 255.0 * shade[k];
         Rgba c{0, 0, 0, 0};
-        if (values[k] != nodata && std::isfinite(values[k])) c = color_at(ramp, values[k]);
+        if (has_value(values[k], nodata)) c = color_at(ramp, values[k]);
         const double a = kOverlayOpacity * c.a / 255.0;
         const double tone = kShadeFloor + (1.0 - kShadeFloor) * shade[k];
         const double channel[3] = {double(c.r), double(c.g), double(c.b)};

@@ -609,11 +609,11 @@ void Stepper::advect(State& s, double tau) {
     // at start (regime_row); the bands computed those of their own rows and columns.
     if (regimes && bands_.size() > 1) {
         const ActiveBox pc = per_cell_box(b);
+        const RegimeFlags at_start = stored_regime(kRegimeAtStart);
         std::size_t q = 0;  // the band that stores row r's regimes (keep_regime_row)
         for (int r = pc.j0; r < pc.j1; ++r) {
             while (q + 1 < bands_.size() && r >= bands_[q].j1) ++q;
             RegimeFlags* row = regime_.data() + s.h.index(0, r);
-            const RegimeFlags at_start = stored_regime(kRegimeAtStart);
             if (bands_[q].empty()) {
                 std::fill(row + pc.i0, row + pc.i1, at_start);
                 continue;

@@ -115,37 +115,33 @@ void Stepper::make_bands() {
     if (b.empty()) return;
     if (whole_box_advection_) {
         bands_.push_back(b);
-        band_columns_.assign(static_cast<std::size_t>(b.j1 - b.j0), {b.i0, b.i1});
-        return;
-    }
-    const int m = numerics_.active_margin;
-    const int rows = kBandStrips * kStripRows;
-    for (int j0 = b.j0; j0 < b.j1; j0 += rows) {
-        const int j1 = std::min(j0 + rows, b.j1);
-        int first = grid_.nx, last = -1;
-        for (int j = std::max(j0 - m, wet_box_.j0); j < std::min(j1 + m, wet_box_.j1); ++j) {
-            first = std::min(first, row_first_[static_cast<std::size_t>(j)]);
-            last = std::max(last, row_last_[static_cast<std::size_t>(j)]);
-        }
-        ActiveBox band{b.i0, b.i0, j0, j1};  // nothing within reach: no columns
-        if (last >= first) band = {std::max(first - m, b.i0), std::min(last + 1 + m, b.i1), j0, j1};
-        // Merged with the band below where its columns would add little: a band's first
-        // strip computes the stage rows it shares with the band below afresh (advect()),
-        // about kRestartRows rows of its width.
-        constexpr int kRestartRows = 8;
-        if (!bands_.empty()) {
-            ActiveBox& below = bands_.back();
-            const ActiveBox both{below.empty() ? band.i0 : std::min(below.i0, band.i0),
-                                 below.empty() ? band.i1 : std::max(below.i1, band.i1), below.j0, j1};
-            const std::size_t apart = below.cells() + band.cells() +
-                                      static_cast<std::size_t>(kRestartRows) *
-                                          static_cast<std::size_t>(std::max(band.i1 - band.i0, 0));
-            if (!below.empty() && !band.empty() && both.cells() <= apart) {
-                below = both;
-                continue;
+    } else {
+        const int m = numerics_.active_margin;
+        const int rows = kBandStrips * kStripRows;
+        for (int j0 = b.j0; j0 < b.j1; j0 += rows) {
+            const int j1 = std::min(j0 + rows, b.j1);
+            int first = grid_.nx, last = -1;
+            for (int j = std::max(j0 - m, wet_box_.j0); j < std::min(j1 + m, wet_box_.j1); ++j) {
+                first = std::min(first, row_first_[static_cast<std::size_t>(j)]);
+                last = std::max(last, row_last_[static_cast<std::size_t>(j)]);
             }
+            ActiveBox band{b.i0, b.i0, j0, j1};  // nothing within reach: no columns
+            if (last >= first) band = {std::max(first - m, b.i0), std::min(last + 1 + m, b.i1), j0, j1};
+            // Merged with the band below where its columns would add little: a band's
+            // first strip computes the stage rows it shares with the band below afresh
+            // (advect()), about kRestartRows rows of its width.
+            constexpr std::size_t kRestartRows = 8;
+            if (!bands_.empty() && !bands_.back().empty() && !band.empty()) {
+                ActiveBox& below = bands_.back();
+                const ActiveBox both{std::min(below.i0, band.i0), std::max(below.i1, band.i1), below.j0, j1};
+                const std::size_t restart = kRestartRows * static_cast<std::size_t>(band.i1 - band.i0);
+                if (both.cells() <= below.cells() + band.cells() + restart) {
+                    below = both;
+                    continue;
+                }
+            }
+            bands_.push_back(band);
         }
-        bands_.push_back(band);
     }
     band_columns_.resize(static_cast<std::size_t>(b.j1 - b.j0));
     for (const ActiveBox& band : bands_)
