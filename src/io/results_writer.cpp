@@ -1,5 +1,7 @@
 #include "avalanche/io/results_writer.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <system_error>
@@ -8,6 +10,7 @@
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/io/effective_config.hpp"
+#include "chunk_encoder.hpp"
 #include "hdf5_handles.hpp"
 
 namespace avalanche {
@@ -23,6 +26,9 @@ namespace {
 // enough for HDF5's default 1 MiB chunk cache.
 constexpr hsize_t kChunkTile = 256;
 constexpr unsigned kGzipLevel = 4;  // most of a snapshot is zeros; higher levels gain little
+
+// The snapshot's fields, in the order of their chunks in a batch.
+enum SnapshotField { kFieldH, kFieldU, kFieldV, kFields };
 
 // Writes the configuration as root attributes: material and numerics keys bare (as the
 // names users know: phi_deg, cfl, ...), other sections as "section.key".
@@ -60,7 +66,10 @@ struct ResultsWriter::Impl {
     Hid file;
     Hid time, h, u, v;
     std::size_t snapshots = 0;
-    std::vector<double> tile_h, tile_u, tile_v;  // one chunk tile of each field
+    // Per thread: a chunk's values and its encoder; per chunk of a batch: its bytes.
+    std::vector<std::vector<double>> chunk_values;
+    std::vector<std::unique_ptr<detail::ChunkEncoder>> encoders;
+    std::vector<std::vector<unsigned char>> encoded;
 
     Hid create_field(const char* name, const char* units, const char* description) {
         const hsize_t ny = static_cast<hsize_t>(grid.ny), nx = static_cast<hsize_t>(grid.nx);
@@ -107,40 +116,36 @@ struct ResultsWriter::Impl {
                                    static_cast<hsize_t>(grid.nx)};
         h5_check(H5Dset_extent(ds.get(), extent), part_path, "append a snapshot");
     }
-    // Writes h, u and v of the dataset rows [r0, r1), columns [c0, c1) (one chunk tile) at
-    // record `snapshots`, from the state (solver row j = ny - 1 - r).
-    void write_tile(const SimulationView& view, int r0, int r1, int c0, int c1) {
-        std::size_t k = 0;
+    // The values of `field` in the dataset rows [r0, r1), columns [c0, c1) (one chunk
+    // tile) from the state (solver row j = ny - 1 - r), into `chunk`: the chunk's full
+    // size, as H5Dwrite_chunk takes it, its cells beyond the grid's edge 0 (never read).
+    void fill_chunk(const SimulationView& view, SnapshotField field, int r0, int r1, int c0, int c1,
+                    std::vector<double>& chunk) const {
+        const int cy = static_cast<int>(std::min<hsize_t>(grid.ny, kChunkTile));
+        const int cx = static_cast<int>(std::min<hsize_t>(grid.nx, kChunkTile));
+        chunk.assign(static_cast<std::size_t>(cy) * static_cast<std::size_t>(cx), 0.0);
         for (int r = r0; r < r1; ++r) {
             const int j = grid.ny - 1 - r;
-            for (int i = c0; i < c1; ++i, ++k) {
-                const double h = view.state.h(i, j);
-                const bool wet = h > 0.0;
-                tile_h[k] = h * view.terrain.normal_thickness(i, j);
-                tile_u[k] = wet ? view.state.hu(i, j) / h : 0.0;
-                tile_v[k] = wet ? view.state.hv(i, j) / h : 0.0;
+            const double* h = view.state.h.row(j);
+            double* out = chunk.data() + static_cast<std::ptrdiff_t>(r - r0) * cx;
+            if (field == kFieldH) {
+                for (int i = c0; i < c1; ++i) out[i - c0] = h[i] * view.terrain.normal_thickness(i, j);
+            } else {
+                const double* q = field == kFieldU ? view.state.hu.row(j) : view.state.hv.row(j);
+                for (int i = c0; i < c1; ++i) out[i - c0] = h[i] > 0.0 ? q[i] / h[i] : 0.0;
             }
         }
-        const hsize_t start[2] = {static_cast<hsize_t>(r0), static_cast<hsize_t>(c0)};
-        const hsize_t count[2] = {static_cast<hsize_t>(r1 - r0), static_cast<hsize_t>(c1 - c0)};
-        write_block(h, 3, start, count, tile_h.data());
-        write_block(u, 3, start, count, tile_u.data());
-        write_block(v, 3, start, count, tile_v.data());
     }
-    // Writes `data` (count_rc[0] x count_rc[1] values, or one for the time) at record
-    // `snapshots`, from row start_rc[0] and column start_rc[1] (dataset orientation).
-    void write_block(const Hid& ds, int rank, const hsize_t start_rc[2], const hsize_t count_rc[2],
-                     const double* data) const {
+    // Writes the time `t` at record `snapshots`.
+    void write_time(double t) const {
         const std::string what = "append a snapshot";
-        Hid fspace = h5_take(H5Dget_space(ds.get()), H5Sclose, part_path, what);
-        const hsize_t start[3] = {snapshots, start_rc[0], start_rc[1]};
-        const hsize_t count[3] = {1, count_rc[0], count_rc[1]};
+        Hid fspace = h5_take(H5Dget_space(time.get()), H5Sclose, part_path, what);
+        const hsize_t start[1] = {snapshots}, count[1] = {1};
         h5_check(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
                  part_path, what);
-        Hid mspace = h5_take(H5Screate_simple(rank, count, nullptr), H5Sclose, part_path, what);
-        h5_check(
-            H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, mspace.get(), fspace.get(), H5P_DEFAULT, data),
-            part_path, what);
+        Hid mspace = h5_take(H5Screate_simple(1, count, nullptr), H5Sclose, part_path, what);
+        h5_check(H5Dwrite(time.get(), H5T_NATIVE_DOUBLE, mspace.get(), fspace.get(), H5P_DEFAULT, &t),
+                 part_path, what);
     }
 };
 
@@ -172,11 +177,6 @@ ResultsWriter::ResultsWriter(std::string final_path, const Grid& grid, const Res
     w.h = w.create_field("h", "m", "flow thickness normal to the bed");
     w.u = w.create_field("u", "m/s", "depth-averaged velocity along +x (columns)");
     w.v = w.create_field("v", "m/s", "depth-averaged velocity along +y (towards row 0)");
-    const std::size_t tile = static_cast<std::size_t>(std::min<hsize_t>(grid.ny, kChunkTile)) *
-                             static_cast<std::size_t>(std::min<hsize_t>(grid.nx, kChunkTile));
-    w.tile_h.resize(tile);
-    w.tile_u.resize(tile);
-    w.tile_v.resize(tile);
 }
 
 ResultsWriter::~ResultsWriter() = default;
@@ -188,7 +188,9 @@ std::size_t ResultsWriter::snapshots() const { return impl_->snapshots; }
 // hold zeros and are left unallocated, read back as the fill value 0. On a large grid
 // with a small flow, writing (and compressing) every tile took 0.37 s a snapshot: most
 // of the time loop of a short run on 1756 x 2068 cells (docs/performance.md, "Outside
-// the solver").
+// the solver"). The chunks are filled and encoded (chunk_encoder.hpp) on the run's
+// threads, a batch of a few per thread at a time (so that a large box never holds all
+// its encoded chunks), and written by this thread alone: HDF5 is not thread-safe.
 void ResultsWriter::on_output(const SimulationView& view) {
     Impl& w = *impl_;
     if (!w.file.valid()) return;
@@ -196,6 +198,10 @@ void ResultsWriter::on_output(const SimulationView& view) {
     const int tile = static_cast<int>(kChunkTile);
     for (const Hid* ds : {&w.time, &w.h, &w.u, &w.v}) w.extend(*ds);
     const ActiveBox& b = view.box;
+    struct Tile {
+        int r0, r1, c0, c1;
+    };
+    std::vector<Tile> tiles;
     if (!b.empty()) {
         // Dataset row 0 is the top (solver row ny - 1): the box's rows [j0, j1) are
         // dataset rows [ny - j1, ny - j0).
@@ -203,11 +209,39 @@ void ResultsWriter::on_output(const SimulationView& view) {
         const int c_first = b.i0 / tile, c_last = (b.i1 - 1) / tile;
         for (int tr = r_first; tr <= r_last; ++tr)
             for (int tc = c_first; tc <= c_last; ++tc)
-                w.write_tile(view, tr * tile, std::min(ny, (tr + 1) * tile), tc * tile,
-                             std::min(nx, (tc + 1) * tile));
+                tiles.push_back({tr * tile, std::min(ny, (tr + 1) * tile), tc * tile, std::min(nx, (tc + 1) * tile)});
     }
-    const hsize_t origin[2] = {0, 0}, one[2] = {1, 1};
-    w.write_block(w.time, 1, origin, one, &view.t);
+    const int chunks = static_cast<int>(tiles.size()) * kFields;
+    const int threads = std::min(omp_get_max_threads(), std::max(chunks, 1));
+    while (static_cast<int>(w.encoders.size()) < threads) {
+        w.encoders.push_back(std::make_unique<detail::ChunkEncoder>(static_cast<int>(kGzipLevel)));
+        w.chunk_values.emplace_back();
+    }
+    const int batch = 4 * threads;
+    if (static_cast<int>(w.encoded.size()) < std::min(batch, chunks))
+        w.encoded.resize(static_cast<std::size_t>(std::min(batch, chunks)));
+    const Hid* fields[kFields] = {&w.h, &w.u, &w.v};
+    for (int first = 0; first < chunks; first += batch) {
+        const int last = std::min(chunks, first + batch);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (last - first > 1)
+        for (int c = first; c < last; ++c) {
+            const int t = omp_get_thread_num();
+            const Tile& tl = tiles[static_cast<std::size_t>(c / kFields)];
+            std::vector<double>& values = w.chunk_values[static_cast<std::size_t>(t)];
+            w.fill_chunk(view, static_cast<SnapshotField>(c % kFields), tl.r0, tl.r1, tl.c0, tl.c1, values);
+            w.encoders[static_cast<std::size_t>(t)]->encode(values.data(), values.size(),
+                                                            w.encoded[static_cast<std::size_t>(c - first)]);
+        }
+        for (int c = first; c < last; ++c) {
+            const Tile& tl = tiles[static_cast<std::size_t>(c / kFields)];
+            const std::vector<unsigned char>& bytes = w.encoded[static_cast<std::size_t>(c - first)];
+            const hsize_t offset[3] = {w.snapshots, static_cast<hsize_t>(tl.r0), static_cast<hsize_t>(tl.c0)};
+            // Filter mask 0: every filter of the dataset (shuffle, deflate) applied.
+            h5_check(H5Dwrite_chunk(fields[c % kFields]->get(), H5P_DEFAULT, 0, offset, bytes.size(), bytes.data()),
+                     w.part_path, "append a snapshot");
+        }
+    }
+    w.write_time(view.t);
     ++w.snapshots;
 }
 

@@ -1,6 +1,7 @@
 // results.h5 read back with the HDF5 C API: layout, units, row orientation (an
 // asymmetric release near y = 0 must land in the BOTTOM rows), times, attributes.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <filesystem>
@@ -140,6 +141,63 @@ TEST(ResultsWriter, OnlyTheTilesMeetingTheActiveBoxAreWritten) {
         H5Sclose(space);
         H5Dclose(ds);
     }
+    H5Fclose(f);
+}
+
+// The chunks are encoded on the run's threads (chunk_encoder.hpp) and written as bytes,
+// a batch at a time. Material over the whole 600 x 300 grid, on two threads: its six
+// tiles (18 chunks, more than a batch), the last column and row of tiles cut by the
+// grid's edge, read back through HDF5's own shuffle and deflate filters to the bit.
+TEST(ResultsWriter, ChunksEncodedOnThreadsReadBackThroughHdf5sFiltersToTheBit) {
+    test::ScratchDir dir("results-encoded");
+    const Grid g{600, 300, 2.0, 2.0, 0.0, 0.0};
+    TerrainFields terrain;
+    terrain.allocate(g, false, false);
+    State s(g);
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+            if ((3 * i + j) % 7 == 0) continue;  // dry cells among them
+            s.h(i, j) = 0.05 + 1e-3 * i + 1e-5 * j * j;
+            s.hu(i, j) = std::sin(0.01 * i) * s.h(i, j);
+            s.hv(i, j) = std::cos(0.02 * j) * s.h(i, j) - 1e-4 * i;
+            terrain.normal_thickness(i, j) = 0.8 + 1e-4 * (i - j);
+        }
+    ResultsMetadata meta;
+    meta.config = nlohmann::json::object();
+    const std::string path = dir.file("results.h5");
+    const int threads_before = omp_get_max_threads();
+    omp_set_num_threads(2);
+    {
+        ResultsWriter writer(path, g, meta);
+        writer.on_output(SimulationView{g, terrain, s, 0.0, 0, ActiveBox{0, g.nx, 0, g.ny}});
+        writer.finish(RunStatistics{});
+    }
+    omp_set_num_threads(threads_before);
+    const auto h = test::read_h5_dataset(path, "h"), u = test::read_h5_dataset(path, "u"),
+               v = test::read_h5_dataset(path, "v");
+    ASSERT_EQ(h.dims, (std::vector<hsize_t>{1, 300, 600}));
+    std::size_t mismatches = 0;
+    for (int r = 0; r < g.ny; ++r)
+        for (int i = 0; i < g.nx; ++i) {
+            const int j = g.ny - 1 - r;
+            const std::size_t k = static_cast<std::size_t>(r) * 600 + static_cast<std::size_t>(i);
+            const double hh = s.h(i, j);
+            mismatches += h.values[k] != hh * terrain.normal_thickness(i, j);
+            mismatches += u.values[k] != (hh > 0.0 ? s.hu(i, j) / hh : 0.0);
+            mismatches += v.values[k] != (hh > 0.0 ? s.hv(i, j) / hh : 0.0);
+        }
+    EXPECT_EQ(mismatches, 0u);
+    hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    hid_t ds = H5Dopen2(f, "h", H5P_DEFAULT);
+    hid_t space = H5Dget_space(ds);
+    hsize_t chunks = 0;
+    ASSERT_GE(H5Dget_num_chunks(ds, space, &chunks), 0);
+    EXPECT_EQ(chunks, 6u);
+    // Stored compressed: the data are 1.44 MB raw.
+    EXPECT_LT(H5Dget_storage_size(ds), 1'440'000u);
+    H5Sclose(space);
+    H5Dclose(ds);
     H5Fclose(f);
 }
 
