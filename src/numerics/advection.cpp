@@ -517,13 +517,15 @@ void Stepper::advect(State& s, double tau) {
         }
     }
     const int nstrips = static_cast<int>(strips.size());
-    // Thread t of n takes the strips from the one before which t / n of the cells lie.
-    const auto start_of = [&](int t, int n) {
-        if (t >= n) return nstrips;
-        const std::size_t target = cells_before.back() * static_cast<std::size_t>(t) / static_cast<std::size_t>(n);
-        return static_cast<int>(std::lower_bound(cells_before.begin(), cells_before.end() - 1, target) -
-                                cells_before.begin());
-    };
+    // Thread t of n takes the strips from the strip boundary nearest to t / n of the
+    // cells (share_start): a whole avaKot run at 5 m on two threads spent 7.0-7.5 s in
+    // its time loop with the first boundary at or beyond, 6.5-6.9 s now. Weighting the
+    // strips by their cost per cell, timed at the last advection, gained nothing more
+    // there. Cutting the strip at the share into two (shares even to a row) changed the
+    // run's maps in the last bits (not traced: a strip of a few rows at a segment's end,
+    // whose waiting rows and carried rows are sized for strips of kStripRows, is a
+    // suspect), so strips keep the rows make_bands gives them.
+    const auto start_of = [&](int t, int n) { return share_start(cells_before, t, n); };
     // The edge faces' outflow of the rows and columns no band reaches is zero.
     const int nx = grid_.nx, ny = grid_.ny;
     if (b.i0 == 0) std::fill(edge_outflow_[0].begin() + b.j0, edge_outflow_[0].begin() + b.j1, 0.0);

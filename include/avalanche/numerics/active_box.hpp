@@ -5,6 +5,7 @@
 // one cell, and a step holds at most two of them; the WAF stencil adds two).
 #include <algorithm>
 #include <cstddef>
+#include <span>
 
 namespace avalanche {
 
@@ -21,5 +22,18 @@ struct ActiveBox {
         return {std::max(0, i0 - m), std::min(nx, i1 + m), std::max(0, j0 - m), std::min(ny, j1 + m)};
     }
 };
+
+// Where thread t of n starts in a list of strips: `before[k]` is the work (cells) of
+// the strips before strip k, before.back() the whole; the strip boundary nearest to
+// t / n of the work (n for t >= n). Nearest, not the first at or beyond: that one gave
+// the first thread half a strip too many on average.
+[[nodiscard]] inline int share_start(std::span<const std::size_t> before, int t, int n) {
+    const int strips = static_cast<int>(before.size()) - 1;
+    if (t >= n) return strips;
+    const std::size_t target = before.back() * static_cast<std::size_t>(t) / static_cast<std::size_t>(n);
+    auto k = std::lower_bound(before.begin(), before.end() - 1, target);
+    if (k != before.begin() && target - *(k - 1) < *k - target) --k;
+    return static_cast<int>(k - before.begin());
+}
 
 }  // namespace avalanche
