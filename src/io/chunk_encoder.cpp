@@ -2,7 +2,6 @@
 
 #include <libdeflate.h>
 
-#include <cstring>
 #include <new>
 
 namespace avalanche::detail {
@@ -12,6 +11,11 @@ ChunkEncoder::ChunkEncoder(int level) : compressor_(libdeflate_alloc_compressor(
 }
 
 ChunkEncoder::~ChunkEncoder() { libdeflate_free_compressor(compressor_); }
+
+std::size_t ChunkEncoder::prepare(std::size_t n) {
+    shuffled_.resize(n * sizeof(double));
+    return libdeflate_zlib_compress_bound(compressor_, n * sizeof(double));
+}
 
 void ChunkEncoder::encode(const double* values, std::size_t n, std::vector<unsigned char>& out) {
     constexpr std::size_t kBytes = sizeof(double);

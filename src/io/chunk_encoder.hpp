@@ -20,9 +20,15 @@ class ChunkEncoder {
     ChunkEncoder(const ChunkEncoder&) = delete;
     ChunkEncoder& operator=(const ChunkEncoder&) = delete;
 
+    // Sizes the encoder's buffer for chunks of `n` doubles and returns the most bytes
+    // encode() can give for them, so that encoding allocates nothing (it runs in an
+    // OpenMP region, which an exception must not leave).
+    std::size_t prepare(std::size_t n);
+
     // The bytes HDF5 stores for `n` doubles under its shuffle filter (element size 8:
     // byte k of every value, k = 0..7, one plane after the other) followed by its
-    // deflate filter (a zlib stream, RFC 1950). Replaces the contents of `out`.
+    // deflate filter (a zlib stream, RFC 1950). Replaces the contents of `out`, which
+    // must hold prepare(n) bytes of capacity to be filled without allocating.
     void encode(const double* values, std::size_t n, std::vector<unsigned char>& out);
 
   private:

@@ -116,14 +116,19 @@ struct ResultsWriter::Impl {
                                    static_cast<hsize_t>(grid.nx)};
         h5_check(H5Dset_extent(ds.get(), extent), part_path, "append a snapshot");
     }
+    // Cells of a chunk: H5Dwrite_chunk takes whole chunks, also where the grid's edge
+    // cuts them.
+    [[nodiscard]] std::size_t chunk_cells() const {
+        return static_cast<std::size_t>(std::min<hsize_t>(grid.ny, kChunkTile)) *
+               static_cast<std::size_t>(std::min<hsize_t>(grid.nx, kChunkTile));
+    }
     // The values of `field` in the dataset rows [r0, r1), columns [c0, c1) (one chunk
-    // tile) from the state (solver row j = ny - 1 - r), into `chunk`: the chunk's full
-    // size, as H5Dwrite_chunk takes it, its cells beyond the grid's edge 0 (never read).
+    // tile) from the state (solver row j = ny - 1 - r), into `chunk` (chunk_cells()
+    // values), its cells beyond the grid's edge 0 (never read).
     void fill_chunk(const SimulationView& view, SnapshotField field, int r0, int r1, int c0, int c1,
                     std::vector<double>& chunk) const {
-        const int cy = static_cast<int>(std::min<hsize_t>(grid.ny, kChunkTile));
         const int cx = static_cast<int>(std::min<hsize_t>(grid.nx, kChunkTile));
-        chunk.assign(static_cast<std::size_t>(cy) * static_cast<std::size_t>(cx), 0.0);
+        std::fill(chunk.begin(), chunk.end(), 0.0);
         for (int r = r0; r < r1; ++r) {
             const int j = grid.ny - 1 - r;
             const double* h = view.state.h.row(j);
@@ -213,13 +218,20 @@ void ResultsWriter::on_output(const SimulationView& view) {
     }
     const int chunks = static_cast<int>(tiles.size()) * kFields;
     const int threads = std::min(omp_get_max_threads(), std::max(chunks, 1));
+    // Every buffer the threads fill is sized here: nothing in the parallel loop below
+    // allocates, so nothing there throws.
+    std::size_t most_bytes = 0;
     while (static_cast<int>(w.encoders.size()) < threads) {
         w.encoders.push_back(std::make_unique<detail::ChunkEncoder>(static_cast<int>(kGzipLevel)));
-        w.chunk_values.emplace_back();
+        w.chunk_values.emplace_back(w.chunk_cells());
+        most_bytes = w.encoders.back()->prepare(w.chunk_cells());
     }
     const int batch = 4 * threads;
-    if (static_cast<int>(w.encoded.size()) < std::min(batch, chunks))
+    if (static_cast<int>(w.encoded.size()) < std::min(batch, chunks)) {
         w.encoded.resize(static_cast<std::size_t>(std::min(batch, chunks)));
+        if (most_bytes == 0) most_bytes = w.encoders.front()->prepare(w.chunk_cells());
+        for (auto& bytes : w.encoded) bytes.reserve(most_bytes);
+    }
     const Hid* fields[kFields] = {&w.h, &w.u, &w.v};
     for (int first = 0; first < chunks; first += batch) {
         const int last = std::min(chunks, first + batch);
