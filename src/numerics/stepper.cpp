@@ -303,17 +303,29 @@ void Stepper::thin_layer_velocities(State& s) const {
         for (int a = i0; a < i1; a += kThinBlock) {
             const int e = std::min(a + kThinBlock, i1);
             if (e - a == kThinBlock && settle_block(a)) continue;
+            // A thin cell without a wet neighbour stops: its velocity is zero, as the
+            // search below would find. Vector selects over the block (most thin cells of
+            // a front's blocks, 29 M of 35 M over a whole avaKot run at 5 m, were these,
+            // tested cell by cell before); a search reads wet cells only, whose momentum
+            // the rule never changes, so the order of the cells does not matter.
+            double searches = 0.0;
+#pragma omp simd reduction(+ : searches)
+            for (int k = a; k < e; ++k) {
+                const bool thin = !(hrow[k] >= hmin);
+                const bool wet_neighbour = (hrow[k - 1] >= hmin) | (hrow[k + 1] >= hmin) |
+                                           (h_south[k] >= hmin) | (h_north[k] >= hmin);
+                const bool stops = thin & !wet_neighbour;
+                hu_row[k] = stops ? hrow[k] * 0.0 : hu_row[k];
+                hv_row[k] = stops ? hrow[k] * 0.0 : hv_row[k];
+                searches += thin & wet_neighbour ? 1.0 : 0.0;
+            }
+            if (searches == 0.0) continue;
             for (int i = a; i < e; ++i) {
                 const double h = hrow[i];
                 if (h >= hmin) continue;
-                // No wet neighbour (most of the dry margin of the box): the velocity is
-                // zero, as the search below would find.
                 if (!(hrow[i - 1] >= hmin) && !(hrow[i + 1] >= hmin) && !(h_south[i] >= hmin) &&
-                    !(h_north[i] >= hmin)) {
-                    hu_row[i] = h * 0.0;
-                    hv_row[i] = h * 0.0;
-                    continue;
-                }
+                    !(h_north[i] >= hmin))
+                    continue;  // stopped above
                 double best = hmin, u = 0.0, v = 0.0;
                 int best_i = i, best_j = j;
                 const int ni[4] = {i - 1, i + 1, i, i};
