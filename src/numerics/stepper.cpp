@@ -326,20 +326,21 @@ void Stepper::thin_layer_velocities(State& s) const {
                 if (!(hrow[i - 1] >= hmin) && !(hrow[i + 1] >= hmin) && !(h_south[i] >= hmin) &&
                     !(h_north[i] >= hmin))
                     continue;  // stopped above
-                double best = hmin, u = 0.0, v = 0.0;
-                int best_i = i, best_j = j;
+                // The deepest wet neighbour (the last of equals), then its velocity.
                 const int ni[4] = {i - 1, i + 1, i, i};
                 const int nj[4] = {j, j, j - 1, j + 1};
+                double best = hmin;
+                int m = 0;  // one neighbour at least is wet (tested above)
                 for (int n = 0; n < 4; ++n) {
                     const double hn = s.h(ni[n], nj[n]);  // ghosts hold the boundary images
                     if (hn >= best) {
                         best = hn;
-                        u = s.hu(ni[n], nj[n]) / hn;
-                        v = s.hv(ni[n], nj[n]) / hn;
-                        best_i = std::clamp(ni[n], 0, grid_.nx - 1);
-                        best_j = std::clamp(nj[n], 0, grid_.ny - 1);
+                        m = n;
                     }
                 }
+                double u = s.hu(ni[m], nj[m]) / best, v = s.hv(ni[m], nj[m]) / best;
+                const int best_i = std::clamp(ni[m], 0, grid_.nx - 1);
+                const int best_j = std::clamp(nj[m], 0, grid_.ny - 1);
                 // In the DEM frame the copied horizontal velocity means a different
                 // along-surface speed on this cell's slope: keep the neighbour's.
                 if (terrain_.has_metric && (u != 0.0 || v != 0.0)) {
