@@ -303,44 +303,31 @@ void Stepper::thin_layer_velocities(State& s) const {
         for (int a = i0; a < i1; a += kThinBlock) {
             const int e = std::min(a + kThinBlock, i1);
             if (e - a == kThinBlock && settle_block(a)) continue;
-            // A thin cell without a wet neighbour stops: its velocity is zero, as the
-            // search below would find. Vector selects over the block (most thin cells of
-            // a front's blocks, 29 M of 35 M over a whole avaKot run at 5 m, were these,
-            // tested cell by cell before); a search reads wet cells only, whose momentum
-            // the rule never changes, so the order of the cells does not matter.
-            double searches = 0.0;
-#pragma omp simd reduction(+ : searches)
-            for (int k = a; k < e; ++k) {
-                const bool thin = !(hrow[k] >= hmin);
-                const bool wet_neighbour = (hrow[k - 1] >= hmin) | (hrow[k + 1] >= hmin) |
-                                           (h_south[k] >= hmin) | (h_north[k] >= hmin);
-                const bool stops = thin & !wet_neighbour;
-                hu_row[k] = stops ? hrow[k] * 0.0 : hu_row[k];
-                hv_row[k] = stops ? hrow[k] * 0.0 : hv_row[k];
-                searches += thin & wet_neighbour ? 1.0 : 0.0;
-            }
-            if (searches == 0.0) continue;
             for (int i = a; i < e; ++i) {
                 const double h = hrow[i];
                 if (h >= hmin) continue;
+                // No wet neighbour (most of the dry margin of the box): the velocity is
+                // zero, as the search below would find.
                 if (!(hrow[i - 1] >= hmin) && !(hrow[i + 1] >= hmin) && !(h_south[i] >= hmin) &&
-                    !(h_north[i] >= hmin))
-                    continue;  // stopped above
-                // The deepest wet neighbour (the last of equals), then its velocity.
+                    !(h_north[i] >= hmin)) {
+                    hu_row[i] = h * 0.0;
+                    hv_row[i] = h * 0.0;
+                    continue;
+                }
+                double best = hmin, u = 0.0, v = 0.0;
+                int best_i = i, best_j = j;
                 const int ni[4] = {i - 1, i + 1, i, i};
                 const int nj[4] = {j, j, j - 1, j + 1};
-                double best = hmin;
-                int m = 0;  // one neighbour at least is wet (tested above)
                 for (int n = 0; n < 4; ++n) {
                     const double hn = s.h(ni[n], nj[n]);  // ghosts hold the boundary images
                     if (hn >= best) {
                         best = hn;
-                        m = n;
+                        u = s.hu(ni[n], nj[n]) / hn;
+                        v = s.hv(ni[n], nj[n]) / hn;
+                        best_i = std::clamp(ni[n], 0, grid_.nx - 1);
+                        best_j = std::clamp(nj[n], 0, grid_.ny - 1);
                     }
                 }
-                double u = s.hu(ni[m], nj[m]) / best, v = s.hv(ni[m], nj[m]) / best;
-                const int best_i = std::clamp(ni[m], 0, grid_.nx - 1);
-                const int best_j = std::clamp(nj[m], 0, grid_.ny - 1);
                 // In the DEM frame the copied horizontal velocity means a different
                 // along-surface speed on this cell's slope: keep the neighbour's.
                 if (terrain_.has_metric && (u != 0.0 || v != 0.0)) {
