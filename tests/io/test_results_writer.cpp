@@ -82,85 +82,98 @@ TEST(ResultsWriter, DatasetsHaveTheGridShapeAndOneRecordPerSnapshot) {
     }
 }
 
+// A 600 x 300 grid of 2 m cells: 3 x 2 chunk tiles of 256 x 256, the last column and
+// row of tiles cut by the grid's edge. The tests set its state and normal thickness.
+struct TiledGrid {
+    Grid g{600, 300, 2.0, 2.0, 0.0, 0.0};
+    TerrainFields terrain;
+    State s{g};
+    TiledGrid() { terrain.allocate(g, false, false); }
+};
+
+// Cells of snapshot `record` in the results.h5 at `path` whose h (bed-normal), u or v
+// differ from those of t's state (dataset row r holds solver row ny - 1 - r).
+std::size_t record_mismatches(const std::string& path, const TiledGrid& t, hsize_t record) {
+    const auto h = test::read_h5_dataset(path, "h"), u = test::read_h5_dataset(path, "u"),
+               v = test::read_h5_dataset(path, "v");
+    const Grid& g = t.g;
+    EXPECT_EQ(h.dims[1], static_cast<hsize_t>(g.ny));
+    EXPECT_EQ(h.dims[2], static_cast<hsize_t>(g.nx));
+    std::size_t mismatches = 0;
+    for (int r = 0; r < g.ny; ++r)
+        for (int i = 0; i < g.nx; ++i) {
+            const int j = g.ny - 1 - r;
+            const double hh = t.s.h(i, j);
+            mismatches += h.at(record, r, i) != hh * t.terrain.normal_thickness(i, j);
+            mismatches += u.at(record, r, i) != (hh > 0.0 ? t.s.hu(i, j) / hh : 0.0);
+            mismatches += v.at(record, r, i) != (hh > 0.0 ? t.s.hv(i, j) / hh : 0.0);
+        }
+    return mismatches;
+}
+
+// Chunks allocated in the dataset `name` of the results.h5 at `path`, over all records.
+hsize_t stored_chunks(const std::string& path, const char* name) {
+    hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t ds = H5Dopen2(f, name, H5P_DEFAULT);
+    hid_t space = H5Dget_space(ds);  // everything selected
+    hsize_t chunks = 0;
+    EXPECT_GE(H5Dget_num_chunks(ds, space, &chunks), 0);
+    H5Sclose(space);
+    H5Dclose(ds);
+    H5Fclose(f);
+    return chunks;
+}
+
 // A snapshot writes only the chunk tiles (256 x 256) that meet the active box; the
-// others are not allocated and read back as zeros. On a 600 x 300 grid (3 x 2 tiles),
-// material in a box straddling two tiles: every value read back equals the state's,
-// exactly two chunks hold the record; an empty box writes none.
+// others are not allocated and read back as zeros. Material in a box straddling two
+// tiles: every value read back equals the state's, exactly two chunks hold the record;
+// an empty box writes none.
 TEST(ResultsWriter, OnlyTheTilesMeetingTheActiveBoxAreWritten) {
     test::ScratchDir dir("results-tiles");
-    const Grid g{600, 300, 2.0, 2.0, 0.0, 0.0};
-    TerrainFields terrain;
-    terrain.allocate(g, false, false);
-    State s(g);
+    TiledGrid t;
     const ActiveBox box{250, 262, 10, 20};  // tile columns 0 and 1, dataset rows 280-289
+    std::size_t wet = 0;
     for (int j = box.j0; j < box.j1; ++j)
         for (int i = box.i0; i < box.i1; ++i) {
             if ((i + j) % 3 == 0) continue;  // dry cells inside the box too
-            s.h(i, j) = 0.1 + 0.01 * i + 0.001 * j;
-            s.hu(i, j) = 0.3 * s.h(i, j) - 0.002 * j;
-            s.hv(i, j) = -0.2 * s.h(i, j) + 0.001 * i;
-            terrain.normal_thickness(i, j) = 0.9 - 0.001 * j;
+            t.s.h(i, j) = 0.1 + 0.01 * i + 0.001 * j;
+            t.s.hu(i, j) = 0.3 * t.s.h(i, j) - 0.002 * j;
+            t.s.hv(i, j) = -0.2 * t.s.h(i, j) + 0.001 * i;
+            t.terrain.normal_thickness(i, j) = 0.9 - 0.001 * j;
+            ++wet;
         }
+    EXPECT_EQ(wet, 80u);
     ResultsMetadata meta;
     meta.config = nlohmann::json::object();
     const std::string path = dir.file("results.h5");
+    const TiledGrid dry;
     {
-        ResultsWriter writer(path, g, meta);
-        writer.on_output(SimulationView{g, terrain, s, 0.5, 10, box});
-        const ActiveBox none{};
-        const State dry(g);
-        writer.on_output(SimulationView{g, terrain, dry, 1.0, 20, none});
+        ResultsWriter writer(path, t.g, meta);
+        writer.on_output(SimulationView{t.g, t.terrain, t.s, 0.5, 10, box});
+        writer.on_output(SimulationView{dry.g, dry.terrain, dry.s, 1.0, 20, ActiveBox{}});
         writer.finish(RunStatistics{});
     }
-    const auto h = test::read_h5_dataset(path, "h"), u = test::read_h5_dataset(path, "u"),
-               v = test::read_h5_dataset(path, "v");
-    ASSERT_EQ(h.dims, (std::vector<hsize_t>{2, 300, 600}));
-    std::size_t wet = 0;
-    for (int r = 0; r < 300; ++r)
-        for (int i = 0; i < 600; ++i) {
-            const int j = 299 - r;
-            const std::size_t k = static_cast<std::size_t>(r) * 600 + i, k2 = k + 300 * 600;
-            const double hh = s.h(i, j);
-            EXPECT_EQ(h.values[k], hh * terrain.normal_thickness(i, j));
-            EXPECT_EQ(u.values[k], hh > 0.0 ? s.hu(i, j) / hh : 0.0);
-            EXPECT_EQ(v.values[k], hh > 0.0 ? s.hv(i, j) / hh : 0.0);
-            EXPECT_EQ(h.values[k2], 0.0);
-            EXPECT_EQ(u.values[k2], 0.0);
-            wet += hh > 0.0;
-        }
-    EXPECT_EQ(wet, 80u);
+    ASSERT_EQ(test::read_h5_dataset(path, "h").dims, (std::vector<hsize_t>{2, 300, 600}));
+    EXPECT_EQ(record_mismatches(path, t, 0), 0u);
+    EXPECT_EQ(record_mismatches(path, dry, 1), 0u);
     // Chunks allocated in each dataset: the first record's two, none for the second.
-    hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    ASSERT_GE(f, 0);
-    for (const char* name : {"h", "u", "v"}) {
-        hid_t ds = H5Dopen2(f, name, H5P_DEFAULT);
-        hid_t space = H5Dget_space(ds);  // everything selected
-        hsize_t chunks = 0;
-        ASSERT_GE(H5Dget_num_chunks(ds, space, &chunks), 0);
-        EXPECT_EQ(chunks, 2u) << name;
-        H5Sclose(space);
-        H5Dclose(ds);
-    }
-    H5Fclose(f);
+    for (const char* name : {"h", "u", "v"}) EXPECT_EQ(stored_chunks(path, name), 2u) << name;
 }
 
 // The chunks are encoded on the run's threads (chunk_encoder.hpp) and written as bytes,
-// a batch at a time. Material over the whole 600 x 300 grid, on two threads: its six
-// tiles (18 chunks, more than a batch), the last column and row of tiles cut by the
-// grid's edge, read back through HDF5's own shuffle and deflate filters to the bit.
+// a batch at a time. Material over the whole grid, on two threads: its six tiles (18
+// chunks, more than a batch), the edge tiles among them, read back through HDF5's own
+// shuffle and deflate filters to the bit.
 TEST(ResultsWriter, ChunksEncodedOnThreadsReadBackThroughHdf5sFiltersToTheBit) {
     test::ScratchDir dir("results-encoded");
-    const Grid g{600, 300, 2.0, 2.0, 0.0, 0.0};
-    TerrainFields terrain;
-    terrain.allocate(g, false, false);
-    State s(g);
-    for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) {
+    TiledGrid t;
+    for (int j = 0; j < t.g.ny; ++j)
+        for (int i = 0; i < t.g.nx; ++i) {
             if ((3 * i + j) % 7 == 0) continue;  // dry cells among them
-            s.h(i, j) = 0.05 + 1e-3 * i + 1e-5 * j * j;
-            s.hu(i, j) = std::sin(0.01 * i) * s.h(i, j);
-            s.hv(i, j) = std::cos(0.02 * j) * s.h(i, j) - 1e-4 * i;
-            terrain.normal_thickness(i, j) = 0.8 + 1e-4 * (i - j);
+            t.s.h(i, j) = 0.05 + 1e-3 * i + 1e-5 * j * j;
+            t.s.hu(i, j) = std::sin(0.01 * i) * t.s.h(i, j);
+            t.s.hv(i, j) = std::cos(0.02 * j) * t.s.h(i, j) - 1e-4 * i;
+            t.terrain.normal_thickness(i, j) = 0.8 + 1e-4 * (i - j);
         }
     ResultsMetadata meta;
     meta.config = nlohmann::json::object();
@@ -168,35 +181,18 @@ TEST(ResultsWriter, ChunksEncodedOnThreadsReadBackThroughHdf5sFiltersToTheBit) {
     const int threads_before = omp_get_max_threads();
     omp_set_num_threads(2);
     {
-        ResultsWriter writer(path, g, meta);
-        writer.on_output(SimulationView{g, terrain, s, 0.0, 0, ActiveBox{0, g.nx, 0, g.ny}});
+        ResultsWriter writer(path, t.g, meta);
+        writer.on_output(SimulationView{t.g, t.terrain, t.s, 0.0, 0, ActiveBox{0, t.g.nx, 0, t.g.ny}});
         writer.finish(RunStatistics{});
     }
     omp_set_num_threads(threads_before);
-    const auto h = test::read_h5_dataset(path, "h"), u = test::read_h5_dataset(path, "u"),
-               v = test::read_h5_dataset(path, "v");
-    ASSERT_EQ(h.dims, (std::vector<hsize_t>{1, 300, 600}));
-    std::size_t mismatches = 0;
-    for (int r = 0; r < g.ny; ++r)
-        for (int i = 0; i < g.nx; ++i) {
-            const int j = g.ny - 1 - r;
-            const std::size_t k = static_cast<std::size_t>(r) * 600 + static_cast<std::size_t>(i);
-            const double hh = s.h(i, j);
-            mismatches += h.values[k] != hh * terrain.normal_thickness(i, j);
-            mismatches += u.values[k] != (hh > 0.0 ? s.hu(i, j) / hh : 0.0);
-            mismatches += v.values[k] != (hh > 0.0 ? s.hv(i, j) / hh : 0.0);
-        }
-    EXPECT_EQ(mismatches, 0u);
-    hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    ASSERT_GE(f, 0);
-    hid_t ds = H5Dopen2(f, "h", H5P_DEFAULT);
-    hid_t space = H5Dget_space(ds);
-    hsize_t chunks = 0;
-    ASSERT_GE(H5Dget_num_chunks(ds, space, &chunks), 0);
-    EXPECT_EQ(chunks, 6u);
+    ASSERT_EQ(test::read_h5_dataset(path, "h").dims, (std::vector<hsize_t>{1, 300, 600}));
+    EXPECT_EQ(record_mismatches(path, t, 0), 0u);
+    EXPECT_EQ(stored_chunks(path, "h"), 6u);
     // Stored compressed: the data are 1.44 MB raw.
+    hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t ds = H5Dopen2(f, "h", H5P_DEFAULT);
     EXPECT_LT(H5Dget_storage_size(ds), 1'440'000u);
-    H5Sclose(space);
     H5Dclose(ds);
     H5Fclose(f);
 }
