@@ -122,6 +122,24 @@ struct ResultsWriter::Impl {
         return static_cast<std::size_t>(std::min<hsize_t>(grid.ny, kChunkTile)) *
                static_cast<std::size_t>(std::min<hsize_t>(grid.nx, kChunkTile));
     }
+    // Whether the snapshot dataset `ds` is stored as create_field stores it: chunks of
+    // one record's tile, the shuffle filter and then deflate. on_output writes encoded
+    // chunks as they are, which a dataset stored otherwise would read back wrong.
+    [[nodiscard]] bool stored_as_written(const Hid& ds) const {
+        Hid dcpl(H5Dget_create_plist(ds.get()), H5Pclose);
+        if (!dcpl.valid() || H5Pget_layout(dcpl.get()) != H5D_CHUNKED) return false;
+        hsize_t chunk[3] = {0, 0, 0};
+        if (H5Pget_chunk(dcpl.get(), 3, chunk) != 3 || chunk[0] != 1 ||
+            chunk[1] != std::min<hsize_t>(grid.ny, kChunkTile) || chunk[2] != std::min<hsize_t>(grid.nx, kChunkTile))
+            return false;
+        if (H5Pget_nfilters(dcpl.get()) != 2) return false;
+        const auto filter = [&](unsigned k) {
+            unsigned flags = 0;
+            std::size_t values = 0;
+            return H5Pget_filter2(dcpl.get(), k, &flags, &values, nullptr, 0, nullptr, nullptr);
+        };
+        return filter(0) == H5Z_FILTER_SHUFFLE && filter(1) == H5Z_FILTER_DEFLATE;
+    }
     // The values of `field` in the dataset rows [r0, r1), columns [c0, c1) (one chunk
     // tile) from the state (solver row j = ny - 1 - r), into `chunk` (chunk_cells()
     // values), its cells beyond the grid's edge 0 (never read).
@@ -312,6 +330,13 @@ void ResultsWriter::resume_from(const std::string& checkpoint_path) {
     if (hdims[0] != tdims[0] || hdims[1] != static_cast<hsize_t>(w.grid.ny) ||
         hdims[2] != static_cast<hsize_t>(w.grid.nx))
         throw InputError(checkpoint_path, "the saved snapshots do not fit the grid of the run");
+    for (const Hid* ds : {&w.h, &w.u, &w.v})
+        if (!w.stored_as_written(*ds))
+            throw InputError(checkpoint_path,
+                             "the saved snapshots are not stored as this version writes them (chunks of 1 x " +
+                                 std::to_string(std::min<hsize_t>(w.grid.ny, kChunkTile)) + " x " +
+                                 std::to_string(std::min<hsize_t>(w.grid.nx, kChunkTile)) +
+                                 " cells, shuffle then deflate)");
     w.snapshots = static_cast<std::size_t>(tdims[0]);
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "avalanche/core/error.hpp"
 #include "avalanche/core/simulation.hpp"
 #include "avalanche/io/effective_config.hpp"
 #include "avalanche/io/results_writer.hpp"
@@ -195,6 +196,61 @@ TEST(ResultsWriter, ChunksEncodedOnThreadsReadBackThroughHdf5sFiltersToTheBit) {
     EXPECT_LT(H5Dget_storage_size(ds), 1'440'000u);
     H5Dclose(ds);
     H5Fclose(f);
+}
+
+// A checkpoint's saved snapshots as a resumed run finds them: /results/{time,h,u,v},
+// one record, the fields chunked as the writer chunks them (1 x 8 x 20 for a 20 x 8
+// grid), with the writer's filters or without any.
+void write_saved_snapshots(const std::string& path, bool filters) {
+    hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = H5Gcreate2(f, "results", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const std::vector<double> zeros(8 * 20, 0.0);
+    {
+        const hsize_t dims[1] = {1}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {256};
+        hid_t space = H5Screate_simple(1, dims, maxdims), dcpl = H5Pcreate(H5P_DATASET_CREATE);
+        H5Pset_chunk(dcpl, 1, chunk);
+        hid_t ds = H5Dcreate2(g, "time", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+        H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, zeros.data());
+        H5Dclose(ds), H5Pclose(dcpl), H5Sclose(space);
+    }
+    for (const char* name : {"h", "u", "v"}) {
+        const hsize_t dims[3] = {1, 8, 20}, maxdims[3] = {H5S_UNLIMITED, 8, 20}, chunk[3] = {1, 8, 20};
+        hid_t space = H5Screate_simple(3, dims, maxdims), dcpl = H5Pcreate(H5P_DATASET_CREATE);
+        H5Pset_chunk(dcpl, 3, chunk);
+        if (filters) H5Pset_shuffle(dcpl), H5Pset_deflate(dcpl, 4);
+        hid_t ds = H5Dcreate2(g, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+        H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, zeros.data());
+        H5Dclose(ds), H5Pclose(dcpl), H5Sclose(space);
+    }
+    H5Gclose(g), H5Fclose(f);
+}
+
+// A resumed run writes its snapshots' chunks encoded for the shuffle and deflate
+// filters, into the datasets it copied from the checkpoint: saved snapshots stored
+// otherwise (here without filters, where the encoded bytes would read back as garbage)
+// are refused with the checkpoint's name; stored as the writer stores them, they resume.
+TEST(ResultsWriter, ResumeRefusesSavedSnapshotsStoredOtherwise) {
+    test::ScratchDir dir("results-resume-layout");
+    const Grid g{20, 8, 0.5, 0.5, 0.0, 0.0};
+    ResultsMetadata meta;
+    meta.config = nlohmann::json::object();
+    const std::string good = dir.file("good.h5"), bad = dir.file("bad.h5");
+    write_saved_snapshots(good, true);
+    write_saved_snapshots(bad, false);
+    {
+        ResultsWriter w(dir.file("resumed-good.h5"), g, meta);
+        EXPECT_NO_THROW(w.resume_from(good));
+        EXPECT_EQ(w.snapshots(), 1u);
+    }
+    ResultsWriter w(dir.file("resumed-bad.h5"), g, meta);
+    try {
+        w.resume_from(bad);
+        FAIL() << "snapshots without the shuffle and deflate filters were taken";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(bad + ": the saved snapshots are not stored as this version writes them"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(ResultsWriter, RowZeroIsTheTopSoAReleaseNearYZeroIsInTheBottomRows) {
