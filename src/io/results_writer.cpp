@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <system_error>
 #include <type_traits>
@@ -75,11 +76,11 @@ struct ResultsWriter::Impl {
         const hsize_t ny = static_cast<hsize_t>(grid.ny), nx = static_cast<hsize_t>(grid.nx);
         const hsize_t dims[3] = {0, ny, nx};
         const hsize_t maxdims[3] = {H5S_UNLIMITED, ny, nx};
-        const hsize_t chunk[3] = {1, std::min(ny, kChunkTile), std::min(nx, kChunkTile)};
+        const std::array<hsize_t, 3> chunk = chunk_dims();
         const std::string what = std::string("create the dataset ") + name;
         Hid space = h5_take(H5Screate_simple(3, dims, maxdims), H5Sclose, part_path, what);
         Hid dcpl = h5_take(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, part_path, what);
-        h5_check(H5Pset_chunk(dcpl.get(), 3, chunk), part_path, what);
+        h5_check(H5Pset_chunk(dcpl.get(), 3, chunk.data()), part_path, what);
         // A snapshot writes only the chunk tiles that meet the active box; the others
         // are never allocated and read as this fill value (on_output).
         const double dry = 0.0;
@@ -116,11 +117,15 @@ struct ResultsWriter::Impl {
                                    static_cast<hsize_t>(grid.nx)};
         h5_check(H5Dset_extent(ds.get(), extent), part_path, "append a snapshot");
     }
+    // The snapshot fields' chunks: one record's tile of rows x columns.
+    [[nodiscard]] std::array<hsize_t, 3> chunk_dims() const {
+        return {1, std::min<hsize_t>(grid.ny, kChunkTile), std::min<hsize_t>(grid.nx, kChunkTile)};
+    }
     // Cells of a chunk: H5Dwrite_chunk takes whole chunks, also where the grid's edge
     // cuts them.
     [[nodiscard]] std::size_t chunk_cells() const {
-        return static_cast<std::size_t>(std::min<hsize_t>(grid.ny, kChunkTile)) *
-               static_cast<std::size_t>(std::min<hsize_t>(grid.nx, kChunkTile));
+        const std::array<hsize_t, 3> c = chunk_dims();
+        return static_cast<std::size_t>(c[1] * c[2]);
     }
     // Whether the snapshot dataset `ds` is stored as create_field stores it: chunks of
     // one record's tile, the shuffle filter and then deflate. on_output writes encoded
@@ -128,10 +133,8 @@ struct ResultsWriter::Impl {
     [[nodiscard]] bool stored_as_written(const Hid& ds) const {
         Hid dcpl(H5Dget_create_plist(ds.get()), H5Pclose);
         if (!dcpl.valid() || H5Pget_layout(dcpl.get()) != H5D_CHUNKED) return false;
-        hsize_t chunk[3] = {0, 0, 0};
-        if (H5Pget_chunk(dcpl.get(), 3, chunk) != 3 || chunk[0] != 1 ||
-            chunk[1] != std::min<hsize_t>(grid.ny, kChunkTile) || chunk[2] != std::min<hsize_t>(grid.nx, kChunkTile))
-            return false;
+        std::array<hsize_t, 3> chunk{};
+        if (H5Pget_chunk(dcpl.get(), 3, chunk.data()) != 3 || chunk != chunk_dims()) return false;
         if (H5Pget_nfilters(dcpl.get()) != 2) return false;
         const auto filter = [&](unsigned k) {
             unsigned flags = 0;
@@ -145,7 +148,7 @@ struct ResultsWriter::Impl {
     // values), its cells beyond the grid's edge 0 (never read).
     void fill_chunk(const SimulationView& view, SnapshotField field, int r0, int r1, int c0, int c1,
                     std::vector<double>& chunk) const {
-        const int cx = static_cast<int>(std::min<hsize_t>(grid.nx, kChunkTile));
+        const int cx = static_cast<int>(chunk_dims()[2]);
         std::fill(chunk.begin(), chunk.end(), 0.0);
         for (int r = r0; r < r1; ++r) {
             const int j = grid.ny - 1 - r;
@@ -238,16 +241,15 @@ void ResultsWriter::on_output(const SimulationView& view) {
     const int threads = std::min(omp_get_max_threads(), std::max(chunks, 1));
     // Every buffer the threads fill is sized here: nothing in the parallel loop below
     // allocates, so nothing there throws.
-    std::size_t most_bytes = 0;
     while (static_cast<int>(w.encoders.size()) < threads) {
         w.encoders.push_back(std::make_unique<detail::ChunkEncoder>(static_cast<int>(kGzipLevel)));
+        w.encoders.back()->prepare(w.chunk_cells());
         w.chunk_values.emplace_back(w.chunk_cells());
-        most_bytes = w.encoders.back()->prepare(w.chunk_cells());
     }
     const int batch = 4 * threads;
     if (static_cast<int>(w.encoded.size()) < std::min(batch, chunks)) {
         w.encoded.resize(static_cast<std::size_t>(std::min(batch, chunks)));
-        if (most_bytes == 0) most_bytes = w.encoders.front()->prepare(w.chunk_cells());
+        const std::size_t most_bytes = w.encoders.front()->prepare(w.chunk_cells());
         for (auto& bytes : w.encoded) bytes.reserve(most_bytes);
     }
     const Hid* fields[kFields] = {&w.h, &w.u, &w.v};
@@ -334,8 +336,7 @@ void ResultsWriter::resume_from(const std::string& checkpoint_path) {
         if (!w.stored_as_written(*ds))
             throw InputError(checkpoint_path,
                              "the saved snapshots are not stored as this version writes them (chunks of 1 x " +
-                                 std::to_string(std::min<hsize_t>(w.grid.ny, kChunkTile)) + " x " +
-                                 std::to_string(std::min<hsize_t>(w.grid.nx, kChunkTile)) +
+                                 std::to_string(w.chunk_dims()[1]) + " x " + std::to_string(w.chunk_dims()[2]) +
                                  " cells, shuffle then deflate)");
     w.snapshots = static_cast<std::size_t>(tdims[0]);
 }
