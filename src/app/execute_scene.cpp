@@ -49,14 +49,14 @@ nlohmann::json monitoring_json(const MonitoringPoints& probes, const HazardMaps&
     nlohmann::json out = nlohmann::json::array();
     for (const auto& p : probes.points()) {
         const std::size_t k = static_cast<std::size_t>(p.j) * g.nx + p.i;
-        const double a = maps.arrival_time()[k];
+        const double a = maps.arrival_time(k);
         out.push_back({{"name", p.name},
                        {"x", p.x},
                        {"y", p.y},
                        {"arrival_time_s", a == HazardMaps::kNotReached ? nlohmann::json(nullptr) : nlohmann::json(a)},
                        {"max_depth_m", maps.max_depth()[k]},
                        {"max_velocity_ms", maps.max_speed()[k]},
-                       {"max_pressure_kpa", maps.max_pressure()[k]}});
+                       {"max_pressure_kpa", maps.max_pressure(k)}});
     }
     return out;
 }

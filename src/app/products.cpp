@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -36,7 +37,7 @@ struct MapSpec {
 
 // Cells never reached are nodata in the maps of maxima, so that QGIS draws only the
 // affected area over the terrain.
-std::vector<double> masked(const std::vector<double>& values, const std::vector<double>& depth, double thr) {
+std::vector<double> masked(std::span<const double> values, std::span<const double> depth, double thr) {
     std::vector<double> out(values.size());
     for (std::size_t k = 0; k < values.size(); ++k) out[k] = depth[k] >= thr ? values[k] : kNodata;
     return out;
@@ -49,10 +50,10 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     const Grid& g = in.scene.grid;
     const gis::GeoGrid geo{g, in.scene.crs_wkt};
     const OutputParams& out = in.scenario.output;
-    const auto& depth = in.maps.max_depth();
-    const std::vector<double> elevation = in.scene.terrain.elevation.interior();
-    // One hillshade under every quick-look.
-    const std::vector<double> shade = gis::hillshade(g, elevation);
+    const std::span<const double> depth = in.maps.max_depth();
+    // One hillshade under every quick-look. (The elevation's grid-sized copy lives only
+    // while a file needs it: each is first-touched memory on a large grid.)
+    const std::vector<double> shade = gis::hillshade(g, in.scene.terrain.elevation.interior());
 
     const std::string pressure_breaks = "classes: low < " + std::to_string(out.pressure_low_kpa) +
                                         " kPa <= medium < " + std::to_string(out.pressure_high_kpa) +
@@ -81,7 +82,8 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
         {{"deposit_thickness", "thickness at the end of the run (bed-normal)", "m", gis::depth_ramp(),
           gis::SampleType::float32, kNodata, true},
          [&] {
-             std::vector<double> deposit = in.maps.deposit_depth();
+             const std::span<const double> made = in.maps.deposit_depth();
+             std::vector<double> deposit(made.begin(), made.end());
              for (double& v : deposit)
                  if (!(v > 0.0)) v = kNodata;
              return deposit;
@@ -122,7 +124,8 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
         dem_band.description = in.scene.frame == Frame::dem ? "computational DEM (elevation)"
                                                             : "chute bed height above its lowest point";
         dem_band.units = "m";
-        gis::write_geotiff((d / "dem.tif").string(), geo, elevation, dem_band, gis::SampleType::float32);
+        gis::write_geotiff((d / "dem.tif").string(), geo, in.scene.terrain.elevation.interior(), dem_band,
+                           gis::SampleType::float32);
         return {"dem.tif"};
     };
     // The six maps and the DEM are independent files (GDAL only): written by as many

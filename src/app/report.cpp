@@ -84,10 +84,10 @@ void write_report(const std::string& dir, const ProductInputs& in, const std::ve
         for (std::size_t p = 0; p < in.probes->points().size(); ++p) {
             const auto& loc = in.probes->points()[p];
             const std::size_t k = static_cast<std::size_t>(loc.j) * in.scene.grid.nx + loc.i;
-            const double a = in.maps.arrival_time()[k];
+            const double a = in.maps.arrival_time(k);
             m << "| " << loc.name << " | " << (a == HazardMaps::kNotReached ? std::string("not reached") : fixed(a, 1))
               << " | " << fixed(in.maps.max_depth()[k], 2) << " | " << fixed(in.maps.max_speed()[k], 1) << " | "
-              << fixed(in.maps.max_pressure()[k], 1) << " |\n";
+              << fixed(in.maps.max_pressure(k), 1) << " |\n";
         }
         m << "\nTime series: `monitoring.csv`, `monitoring.h5`.\n\n";
     }

@@ -28,34 +28,49 @@ HazardMaps::HazardMaps(const Grid& grid, const OutputParams& params, double dens
     : grid_(grid),
       params_(params),
       density_(density),
-      max_depth_(grid.cells(), 0.0),
-      max_speed_(grid.cells(), 0.0),
-      max_pressure_(grid.cells(), 0.0),
-      arrival_(grid.cells(), kNotReached),
-      deposit_(grid.cells(), 0.0) {}
+      max_depth_(grid.cells()),
+      max_speed_(grid.cells()),
+      arrival_(grid.cells()),
+      deposit_(grid.cells()) {}
 
+std::vector<double> HazardMaps::max_pressure() const {
+    std::vector<double> out(max_speed_.size());
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = pressure_kpa(max_speed_[k]);
+    return out;
+}
+
+std::vector<double> HazardMaps::arrival_time() const {
+    std::vector<double> out(arrival_.size());
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = arrival_time(k);
+    return out;
+}
+
+// A checkpoint holds the maps as they read (arrival -1 where not reached, docs/io.md).
 void HazardMaps::save(CheckpointData& c) const {
-    c.reals["hazard_maps/max_depth"] = max_depth_;
-    c.reals["hazard_maps/max_speed"] = max_speed_;
-    c.reals["hazard_maps/max_pressure"] = max_pressure_;
-    c.reals["hazard_maps/arrival_time"] = arrival_;
+    c.reals["hazard_maps/max_depth"].assign(max_depth_.begin(), max_depth_.end());
+    c.reals["hazard_maps/max_speed"].assign(max_speed_.begin(), max_speed_.end());
+    c.reals["hazard_maps/arrival_time"] = arrival_time();
 }
 
 void HazardMaps::restore(const CheckpointData& c) {
     const auto n = static_cast<long long>(grid_.cells());
-    // Read all four before assigning any: a bad checkpoint leaves the maps untouched.
-    auto depth = c.real("hazard_maps/max_depth", n);
-    auto speed = c.real("hazard_maps/max_speed", n);
-    auto pressure = c.real("hazard_maps/max_pressure", n);
-    auto arrival = c.real("hazard_maps/arrival_time", n);
-    max_depth_ = std::move(depth);
-    max_speed_ = std::move(speed);
-    max_pressure_ = std::move(pressure);
-    arrival_ = std::move(arrival);
+    // Read all three before assigning any: a bad checkpoint leaves the maps untouched.
+    const auto depth = c.real("hazard_maps/max_depth", n);
+    const auto speed = c.real("hazard_maps/max_speed", n);
+    const auto arrival = c.real("hazard_maps/arrival_time", n);
+    // Fresh maps written only where the flow was, as the run left them.
+    CellVector<double> d(depth.size()), s(speed.size()), a(arrival.size());
+    for (std::size_t k = 0; k < depth.size(); ++k) {
+        if (depth[k] != 0.0) d[k] = depth[k];
+        if (speed[k] != 0.0) s[k] = speed[k];
+        if (depth[k] >= params_.h_threshold) a[k] = arrival[k];
+    }
+    max_depth_ = std::move(d);
+    max_speed_ = std::move(s);
+    arrival_ = std::move(a);
 }
 
 void HazardMaps::accumulate(const SimulationView& v, int i0, int i1, int j0, int j1) {
-    const double rho_kpa = density_ / 1000.0;
     const double thr = params_.h_threshold;
     const bool threaded = static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(j1 - j0) >= 20000;
 #pragma omp parallel for schedule(static) if (threaded)
@@ -70,11 +85,9 @@ void HazardMaps::accumulate(const SimulationView& v, int i0, int i1, int j0, int
                 max_depth_[k] = std::max(max_depth_[k], hn);
                 continue;
             }
-            const double speed = true_speed(v.state, v.terrain, i, j);
+            if (!reached(k)) arrival_[k] = v.t;  // reached for the first time
             max_depth_[k] = std::max(max_depth_[k], hn);
-            max_speed_[k] = std::max(max_speed_[k], speed);
-            max_pressure_[k] = std::max(max_pressure_[k], rho_kpa * speed * speed);
-            if (arrival_[k] == kNotReached) arrival_[k] = v.t;
+            max_speed_[k] = std::max(max_speed_[k], true_speed(v.state, v.terrain, i, j));
         }
     }
 }
@@ -103,7 +116,7 @@ void HazardMaps::on_end(const SimulationView& v) {
 std::vector<std::uint8_t> HazardMaps::hazard_classes() const {
     std::vector<std::uint8_t> out(grid_.cells());
     for (std::size_t k = 0; k < out.size(); ++k)
-        out[k] = static_cast<std::uint8_t>(classify(max_depth_[k], max_pressure_[k], params_));
+        out[k] = static_cast<std::uint8_t>(classify(max_depth_[k], max_pressure(k), params_));
     return out;
 }
 

@@ -43,7 +43,7 @@ RunoutMetrics compute_runout(const Grid& grid, const TerrainFields& terrain, Rel
             const std::size_t k = static_cast<std::size_t>(j) * grid.nx + i;
             m.max_depth_m = std::max(m.max_depth_m, maps.max_depth()[k]);
             m.max_velocity_ms = std::max(m.max_velocity_ms, maps.max_speed()[k]);
-            m.max_pressure_kpa = std::max(m.max_pressure_kpa, maps.max_pressure()[k]);
+            m.max_pressure_kpa = std::max(m.max_pressure_kpa, maps.max_pressure(k));
             // Only cells with a deposit: the flow reached them, so their terrain is made
             // (terrain.hpp); elsewhere the term was 0 / normal_thickness = 0.
             if (maps.deposit_depth()[k] != 0.0)

@@ -8,8 +8,10 @@
 // component of the projected velocity); impact pressure is rho |u|^2 in kPa.
 // "Reached" means h >= h_threshold.
 #include <cstdint>
+#include <span>
 #include <vector>
 
+#include "avalanche/core/field_storage.hpp"
 #include "avalanche/core/observer.hpp"
 #include "avalanche/output/output_params.hpp"
 
@@ -25,6 +27,14 @@ HazardClass classify(double max_depth, double max_pressure_kpa, const OutputPara
 // Along-surface speed of a cell from the state (0 for a dry cell).
 double true_speed(const State& s, const TerrainFields& t, int i, int j);
 
+// Storage: every map starts as untouched zeros (CellVector, core/field_storage.hpp), so
+// on a large DEM only the pages of cells the flow reaches are ever made -- a small
+// release on a 2000 x 2000 grid no longer writes 32 B/cell of maps it never fills. Hence
+// two maps are not stored as they read: the arrival time is kept only for reached cells
+// (a cell is reached exactly when its maximum depth is at least h_threshold, which is
+// positive), and the maximum pressure is rho |u|^2 of the maximum speed -- x -> rho x x
+// is monotonic in rounded arithmetic too, so it is to the bit the maximum over the
+// steps of the pressure the step would have computed.
 class HazardMaps : public StepObserver {
 public:
     HazardMaps(const Grid& grid, const OutputParams& params, double density);
@@ -33,13 +43,17 @@ public:
     void on_step(const SimulationView& v) override;
     void on_end(const SimulationView& v) override;
 
-    // Dense nx*ny maps in solver orientation (index j * nx + i).
-    [[nodiscard]] const std::vector<double>& max_depth() const { return max_depth_; }        // m
-    [[nodiscard]] const std::vector<double>& max_speed() const { return max_speed_; }        // m/s
-    [[nodiscard]] const std::vector<double>& max_pressure() const { return max_pressure_; }  // kPa
-    // First time the cell was reached (s); kNotReached where never.
-    [[nodiscard]] const std::vector<double>& arrival_time() const { return arrival_; }
-    [[nodiscard]] const std::vector<double>& deposit_depth() const { return deposit_; }      // m, at the end
+    // Dense nx*ny maps in solver orientation (index k = j * nx + i).
+    [[nodiscard]] std::span<const double> max_depth() const { return max_depth_; }      // m
+    [[nodiscard]] std::span<const double> max_speed() const { return max_speed_; }      // m/s
+    [[nodiscard]] std::span<const double> deposit_depth() const { return deposit_; }    // m, at the end
+    // Maximum impact pressure rho |u|^2 (kPa): of one cell, and the whole map.
+    [[nodiscard]] double max_pressure(std::size_t k) const { return pressure_kpa(max_speed_[k]); }
+    [[nodiscard]] std::vector<double> max_pressure() const;
+    // First time the cell was reached (s); kNotReached where never: of one cell, and the
+    // whole map.
+    [[nodiscard]] double arrival_time(std::size_t k) const { return reached(k) ? arrival_[k] : kNotReached; }
+    [[nodiscard]] std::vector<double> arrival_time() const;
     [[nodiscard]] std::vector<std::uint8_t> hazard_classes() const;
     [[nodiscard]] const Grid& grid() const { return grid_; }
 
@@ -52,11 +66,15 @@ public:
 
 private:
     void accumulate(const SimulationView& v, int i0, int i1, int j0, int j1);
+    [[nodiscard]] bool reached(std::size_t k) const { return max_depth_[k] >= params_.h_threshold; }
+    // The expression the step used when it kept a pressure map: (rho * s) * s.
+    [[nodiscard]] double pressure_kpa(double speed) const { return density_ / 1000.0 * speed * speed; }
 
     Grid grid_;
     OutputParams params_;
     double density_;
-    std::vector<double> max_depth_, max_speed_, max_pressure_, arrival_, deposit_;
+    // arrival_ holds a time only where reached(k); elsewhere it stays 0.
+    CellVector<double> max_depth_, max_speed_, arrival_, deposit_;
 };
 
 }  // namespace avalanche
