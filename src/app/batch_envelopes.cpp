@@ -85,7 +85,8 @@ std::vector<std::string> write_envelopes(const std::string& dir,
                            "output.h_threshold",
                        "fraction",
                        kNodata,
-                       {{"SCENARIOS", count}}};
+                       {{"SCENARIOS", count}},
+                       {}};
     gis::write_geotiff((d / "impact_frequency.tif").string(), *geo, reached, freq);
     written.push_back("impact_frequency.tif");
     const char* words[] = {"maximum flow depth (bed-normal)", "maximum along-surface speed",
@@ -95,7 +96,8 @@ std::vector<std::string> write_envelopes(const std::string& dir,
         gis::BandInfo band{std::string(words[m]) + " over " + count + " scenarios",
                            maps[m].second,
                            kNodata,
-                           {{"SCENARIOS", count}}};
+                           {{"SCENARIOS", count}},
+                           {}};
         if (m == 0) band.metadata["THICKNESS"] = "bed-normal";
         gis::write_geotiff((d / (name + ".tif")).string(), *geo, envelopes[m].value, band);
         written.push_back(name + ".tif");

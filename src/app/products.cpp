@@ -123,7 +123,9 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
         gis::BandInfo dem_band;
         dem_band.description = in.scene.frame == Frame::dem ? "computational DEM (elevation)"
                                                             : "chute bed height above its lowest point";
-        dem_band.units = "m";
+        // Appended, not assigned from a literal: GCC 12's -Wrestrict misreads the
+        // inlined literal assignment here (a false positive).
+        dem_band.units.push_back('m');
         gis::write_geotiff((d / "dem.tif").string(), geo, in.scene.terrain.elevation.interior(), dem_band,
                            gis::SampleType::float32);
         return {"dem.tif"};
