@@ -112,7 +112,10 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
         band.metadata["DEPTH_THRESHOLD_M"] = std::to_string(out.h_threshold);
         if (spec.thickness) band.metadata["THICKNESS"] = "bed-normal";
         const std::string tif = spec.name + ".tif";
-        gis::write_geotiff((d / tif).string(), geo, values, band, spec.type);
+        // Without a predictor: a map is nodata outside the affected area, and such rasters
+        // came out smaller and faster without one (docs/performance.md, "Hazard maps
+        // where the flow went"); the DEM keeps it.
+        gis::write_geotiff((d / tif).string(), geo, values, band, spec.type, gis::Predictor::none);
         gis::write_qml((d / (spec.name + ".qml")).string(), spec.ramp);
         gis::write_quicklook_png_over((d / (spec.name + ".png")).string(), geo, values, shade,
                                       spec.ramp, spec.nodata, spec.block);
@@ -133,10 +136,14 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     // The six maps and the DEM are independent files (GDAL only): written by as many
     // threads as the run had (summary "threads"), each taking the next one. On a large
     // grid they were most of a run's time outside the solver (docs/performance.md,
-    // "Outside the solver"). The list of files keeps the order of `maps`.
+    // "Outside the solver"). The DEM goes first: it takes two to three times as long as
+    // a map (real values everywhere to compress), and started last it left the other
+    // threads idle at the end. The list of files keeps the order of `maps`, DEM last.
     std::vector<std::vector<std::string>> files(maps.size() + 1);
-    run_on_threads(files.size(), in.stats.threads,
-                   [&](std::size_t k) { files[k] = k < maps.size() ? write_map(k) : write_dem(); });
+    run_on_threads(files.size(), in.stats.threads, [&](std::size_t n) {
+        if (n == 0) files.back() = write_dem();
+        else files[n - 1] = write_map(n - 1);
+    });
     std::vector<std::string> written;
     for (const auto& f : files) written.insert(written.end(), f.begin(), f.end());
 

@@ -89,7 +89,7 @@ class NoPamScope {
 }  // namespace
 
 void write_geotiff(const std::string& path, const GeoGrid& geo, const std::vector<double>& values,
-                   const BandInfo& band, SampleType type) {
+                   const BandInfo& band, SampleType type, Predictor predictor) {
     detail::GdalErrorScope errors;
     NoPamScope no_pam;
     const TypeInfo info = type_info(type);
@@ -113,7 +113,8 @@ void write_geotiff(const std::string& path, const GeoGrid& geo, const std::vecto
     if (cog == nullptr) throw OutputError(path, "GDAL has no COG driver (GDAL >= 3.1 needed)");
     CPLStringList options;
     options.SetNameValue("COMPRESS", "DEFLATE");
-    options.SetNameValue("PREDICTOR", "YES");  // 2 for integers, 3 for floats
+    // YES: 2 for integers, 3 for floats.
+    options.SetNameValue("PREDICTOR", predictor == Predictor::automatic ? "YES" : "NO");
     options.SetNameValue("OVERVIEWS", "AUTO");
     options.SetNameValue("OVERVIEW_RESAMPLING", info.integer ? "NEAREST" : "AVERAGE");
 

@@ -1,6 +1,7 @@
 // The products (six maps with their styles and quick-looks, the computational DEM) are
 // written by as many threads as the run has (products.cpp): the files, and their order
 // in summary.json, are those of one thread, byte for byte.
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -40,6 +41,32 @@ TEST(ProductsThreads, FilesAreThoseOfOneThreadByteForByte) {
         ++compared;
     }
     EXPECT_EQ(compared, 19u);  // 6 x (tif, qml, png) and dem.tif
+}
+
+// DEFLATE's predictor where it pays (docs/gis.md): the DEM with the floating-point one,
+// the hazard maps (nodata outside the affected area) without.
+TEST(ProductsThreads, DemWithPredictorMapsWithout) {
+    test::ScratchDir dir("products-predictor");
+    const std::string out = dir.file("run");
+    const test::ProcessResult r = test::run_binary(
+        dir, "run --dem '" + test::avaKot("avaKot_dem.tif") + "' --release '" + test::avaKot("avaKot_release.gpkg") +
+                 "' --thickness 2 --cell-size 20 --t-end 10 --quiet --out '" + out + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    GDALAllRegister();
+    // The PREDICTOR item of the file's image structure; empty without one.
+    const auto predictor = [&](const std::string& file) {
+        std::string value;
+        GDALDataset* ds = GDALDataset::Open((out + "/" + file).c_str(), GDAL_OF_RASTER);
+        EXPECT_NE(ds, nullptr) << file;
+        if (ds == nullptr) return value;
+        if (const char* p = ds->GetMetadataItem("PREDICTOR", "IMAGE_STRUCTURE")) value.assign(p);
+        GDALClose(ds);
+        return value;
+    };
+    EXPECT_EQ(predictor("dem.tif"), "3") << "the floating-point predictor";
+    for (const char* map : {"max_depth.tif", "max_velocity.tif", "max_pressure.tif", "arrival_time.tif",
+                            "deposit_thickness.tif", "hazard_class.tif"})
+        EXPECT_EQ(predictor(map), "") << map << " has a predictor";
 }
 
 }  // namespace

@@ -59,6 +59,40 @@ TEST(WriteGeotiff, CogWithCrsNodataUnitsAndDescription) {
     EXPECT_FALSE(std::filesystem::exists(tmp.file("max_depth.tif.aux.xml")));
 }
 
+// The predictor is a choice of compression only: with and without it the same values
+// read back, and the file says which it used.
+TEST(WriteGeotiff, PredictorAsAskedSameValues) {
+    TempDir tmp;
+    const GeoGrid geo = utm_grid(300, 200);
+    std::vector<double> values(geo.grid.cells(), -9999.0);
+    for (std::size_t k = 0; k < values.size(); k += 7) values[k] = 1000.0 + 0.37 * static_cast<double>(k % 1013);
+    const BandInfo band{"elevation", "m", -9999.0, {}, {}};
+    write_geotiff(tmp.file("with.tif"), geo, values, band);
+    write_geotiff(tmp.file("without.tif"), geo, values, band, SampleType::float32, Predictor::none);
+    GDALAllRegister();
+    std::vector<std::vector<float>> read;
+    for (const char* name : {"with.tif", "without.tif"}) {
+        GDALDataset* ds = GDALDataset::Open(tmp.file(name).c_str(), GDAL_OF_RASTER);
+        ASSERT_NE(ds, nullptr) << name;
+        const char* p = ds->GetMetadataItem("PREDICTOR", "IMAGE_STRUCTURE");
+        if (std::string(name) == "with.tif") {
+            ASSERT_NE(p, nullptr);
+            EXPECT_STREQ(p, "3") << "the floating-point predictor";
+        } else {
+            EXPECT_EQ(p, nullptr) << "no predictor";
+        }
+        std::vector<float> v(geo.grid.cells());
+        ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 300, 200, v.data(), 300, 200, GDT_Float32, 0, 0,
+                                                 nullptr),
+                  CE_None);
+        read.push_back(std::move(v));
+        GDALClose(ds);
+    }
+    EXPECT_TRUE(read[0] == read[1]);
+    EXPECT_EQ(read[1][199 * 300 + 0], static_cast<float>(values[0]))  // north-up: row 0 is the north
+        << "cell (0, 0) is the first of the last row";
+}
+
 // The rows are written north-up (write_solver_rows, a row at a time into its flipped
 // row), across tiles and on a grid larger than a tile in both directions.
 TEST(WriteGeotiff, RowsAreWrittenNorthUp) {
