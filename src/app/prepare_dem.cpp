@@ -3,6 +3,7 @@
 // thickness -> initial state; monitoring points located on the grid.
 #include "avalanche/app/prepare_dem.hpp"
 
+#include <omp.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -61,6 +62,7 @@ PreparedScene prepare_dem_scene(const Scenario& s) {
     opts.max_solver_bytes = memory.bytes;
     opts.memory_limit_source = memory.source;
     opts.solver_bytes_per_cell = kSolverBytesPerCell;
+    opts.threads = omp_get_max_threads();
     const gis::Dem dem = gis::load_dem(spec.dem_paths, opts);
     p.input_notes.push_back(dem.description_of_steps);
     p.input_files = spec.dem_paths;

@@ -128,7 +128,7 @@ Dem load_dem(const std::vector<std::string>& paths, const DemOptions& opts) {
     std::vector<detail::DatasetPtr> owned;
     const std::vector<GDALDataset*> sources = mosaic_by_crs(tiles, owned, errors);
     detail::DatasetPtr warped =
-        detail::warp_onto_grid(sources, plan.geo, resampling, join(paths), errors);
+        detail::warp_onto_grid(sources, plan.geo, resampling, join(paths), errors, opts.threads);
 
     Dem dem;
     dem.geo = plan.geo;

@@ -122,9 +122,13 @@ VoidFillResult fill_voids(const GeoGrid& geo, std::vector<double>& z) {
     // extended layer by layer (extend_from_neighbours).
     const double max_distance =
         std::min(kInterpolationReachCells, static_cast<double>(geo.grid.nx + geo.grid.ny));
+    // Its working rasters (distance and value of the nearest data above each cell, the
+    // grid's size) in memory, not GDAL's default of temporary GeoTIFFs on disk.
+    CPLStringList options;
+    options.SetNameValue("TEMP_FILE_DRIVER", "MEM");
     if (GDALFillNodata(GDALRasterBand::ToHandle(values->GetRasterBand(1)),
                        GDALRasterBand::ToHandle(mask->GetRasterBand(1)), max_distance, 0, 0,
-                       nullptr, nullptr, nullptr) != CE_None)
+                       options.List(), nullptr, nullptr) != CE_None)
         throw Error(ExitCode::internal, "GDALFillNodata failed on the DEM voids");
     std::vector<double> filled = read_solver_rows(*values, 1, geo.grid, "DEM void filling");
     for (std::size_t k = 0; k < z.size(); ++k)

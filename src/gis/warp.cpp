@@ -2,6 +2,7 @@
 
 #include <gdal_utils.h>
 
+#include <algorithm>
 #include <array>
 #include <limits>
 
@@ -35,7 +36,7 @@ std::string gdal_resampling(const std::string& name, const std::string& key) {
 
 DatasetPtr warp_onto_grid(const std::vector<GDALDataset*>& sources, const GeoGrid& geo,
                           const std::string& resampling, const std::string& label,
-                          GdalErrorScope& errors) {
+                          GdalErrorScope& errors, int threads) {
     DatasetPtr dst = mem_for_grid(geo, 1, GDT_Float64);
     GDALRasterBand* band = dst->GetRasterBand(1);
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -45,7 +46,8 @@ DatasetPtr warp_onto_grid(const std::vector<GDALDataset*>& sources, const GeoGri
     // No INIT_DEST: the band is pre-filled with NaN above, and INIT_DEST would be applied
     // again for every source, erasing what the previous sources wrote.
     CPLStringList args;
-    for (const char* a : {"-r", resampling.c_str(), "-et", kWarpErrorThreshold, "-q"})
+    const std::string num_threads = "NUM_THREADS=" + std::to_string(std::max(1, threads));
+    for (const char* a : {"-r", resampling.c_str(), "-et", kWarpErrorThreshold, "-q", "-wo", num_threads.c_str()})
         args.AddString(a);
     GDALWarpAppOptions* options = GDALWarpAppOptionsNew(args.List(), nullptr);
     std::vector<GDALDatasetH> handles;

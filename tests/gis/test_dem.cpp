@@ -1,8 +1,10 @@
 // load_dem on real and synthetic DEMs: reprojection, mosaics, voids, refusals.
+#include <cpl_conv.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -129,6 +131,21 @@ TEST(LoadDem, UserCrsAndCellSizeReprojectAProjectedDem) {
     EXPECT_LE(dem.z_max, kAvaKotMax + 1e-6);
 }
 
+// GDAL's warp kernel on several threads (the run's) gives the cells of one thread:
+// reprojected and resampled, void filled, to the bit.
+TEST(LoadDem, WarpedCellsAreTheSameOnAnyNumberOfThreads) {
+    DemOptions opts;
+    opts.crs = "EPSG:32632";
+    opts.cell_size = 2.5;
+    const Dem one = load_dem({testing::avaKot("avaKot_dem.tif")}, opts);
+    opts.threads = 3;
+    const Dem three = load_dem({testing::avaKot("avaKot_dem.tif")}, opts);
+    ASSERT_EQ(one.z.size(), three.z.size());
+    ASSERT_GT(one.z.size(), 1000000u);
+    EXPECT_EQ(std::memcmp(one.z.data(), three.z.data(), one.z.size() * sizeof(double)), 0);
+    EXPECT_EQ(one.filled_mask, three.filled_mask);
+}
+
 TEST(LoadDem, DemWithoutCrsNeedsTheCrsOption) {
     TempDir tmp;
     testing::write_raw_geotiff(tmp.file("nocrs.tif"), 6, 5, {600000, 10, 0, 5200050, 0, -10}, "",
@@ -179,6 +196,28 @@ TEST(LoadDem, NanElevationsAreFilledAndCounted) {
     EXPECT_EQ(dem.filled_mask[k], static_cast<std::uint8_t>(CellOrigin::filled_hole));
     EXPECT_NEAR(dem.z[k], 1000.0 + 4 - 3, 1.0);  // interpolated from the plane
     EXPECT_TRUE(all_finite(dem.z));
+}
+
+// Filling voids writes no temporary files: GDALFillNodata put two grid-sized GeoTIFFs
+// in the working directory (or CPL_TMPDIR), so a run from a folder it cannot write in
+// failed with "GDALFillNodata failed on the DEM voids". Here the temporary folder
+// GDAL would use does not exist.
+TEST(LoadDem, VoidsAreFilledWithoutTemporaryFiles) {
+    TempDir tmp;
+    testing::write_raw_geotiff(tmp.file("nan.tif"), 5, 4, {600000, 10, 0, 5200040, 0, -10},
+                               "EPSG:32632", [](int c, int r) {
+                                   return c == 2 && r == 1 ? std::numeric_limits<double>::quiet_NaN()
+                                                           : 1000.0 + 2 * c - 3 * r;
+                               });
+    const std::string missing = tmp.file("no-such-folder");
+    const std::string before = CPLGetConfigOption("CPL_TMPDIR", "");
+    CPLSetConfigOption("CPL_TMPDIR", missing.c_str());
+    Dem dem;
+    EXPECT_NO_THROW(dem = load_dem({tmp.file("nan.tif")}));
+    CPLSetConfigOption("CPL_TMPDIR", before.empty() ? nullptr : before.c_str());
+    EXPECT_EQ(dem.filled_voids, 1);
+    EXPECT_TRUE(all_finite(dem.z));
+    EXPECT_FALSE(std::filesystem::exists(missing));
 }
 
 TEST(LoadDem, UndeclaredVoidMarkersAreRefused) {
