@@ -55,9 +55,9 @@ void HazardMaps::save(CheckpointData& c) const {
 void HazardMaps::restore(const CheckpointData& c) {
     const auto n = static_cast<long long>(grid_.cells());
     // Read all three before assigning any: a bad checkpoint leaves the maps untouched.
-    const auto depth = c.real("hazard_maps/max_depth", n);
-    const auto speed = c.real("hazard_maps/max_speed", n);
-    const auto arrival = c.real("hazard_maps/arrival_time", n);
+    const auto& depth = c.real("hazard_maps/max_depth", n);
+    const auto& speed = c.real("hazard_maps/max_speed", n);
+    const auto& arrival = c.real("hazard_maps/arrival_time", n);
     // Fresh maps written only where the flow was, as the run left them.
     CellVector<double> d(depth.size()), s(speed.size()), a(arrival.size());
     for (std::size_t k = 0; k < depth.size(); ++k) {
