@@ -539,12 +539,9 @@ void Stepper::advect(State& s, double tau) {
     // segments, whose strips read the old state there: their updated rows wait in the
     // thread's buffers until every segment is done. The other strips write theirs into
     // s at once (advect_strip, step 7), so no second state is kept.
-    int team = 1;
 #pragma omp parallel if (threaded_)
     {
         const int n = omp_get_num_threads(), t = omp_get_thread_num();
-#pragma omp single
-        team = n;
         const int first = start_of(t, n), last = start_of(t + 1, n);
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
         w.waiting_used = 0;
@@ -571,6 +568,26 @@ void Stepper::advect(State& s, double tau) {
             const ActiveBox& band = bands_[st.band];
             advect_strip(s, tau, ActiveBox{band.i0, band.i1, b.j0, b.j1}, st.j0, st.j1, w, wait);
         }
+        // Every segment done: each thread now stores the regimes and rows its own
+        // segments held back (rows of one thread only, so the threads write apart).
+#pragma omp barrier
+        for (std::size_t q = 0; q < w.held_rows.size(); ++q) {
+            const auto [c0, c1] = w.held_cols[q];
+            const RegimeFlags* held =
+                w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + kGhostLayers + c0;
+            std::transform(held, held + (c1 - c0), regime_.data() + s.h.index(c0, w.held_rows[q]),
+                           stored_regime);
+        }
+        for (int q = 0; q < w.waiting_used; ++q) {
+            const StripBuffers::WaitingRows& wr = w.waiting[static_cast<std::size_t>(q)];
+            const std::size_t width = static_cast<std::size_t>(wr.i1 - wr.i0);
+            for (int j = wr.j0; j < wr.j1; ++j) {
+                const std::ptrdiff_t k = wr.at(wr.i0, j);
+                std::copy_n(wr.h.data() + k, width, s.h.row(j) + wr.i0);
+                std::copy_n(wr.hu.data() + k, width, s.hu.row(j) + wr.i0);
+                std::copy_n(wr.hv.data() + k, width, s.hv.row(j) + wr.i0);
+            }
+        }
     }
     // Volume through the open edges: west, east, south, north, in that order.
     double out = 0.0;
@@ -583,30 +600,6 @@ void Stepper::advect(State& s, double tau) {
     if (b.j1 == grid_.ny)
         for (int i = b.i0; i < b.i1; ++i) out += edge_outflow_[3][i];
     outflow_volume_ += out;
-    // The regimes and the rows that waited.
-    for (int t = 0; t < team; ++t) {
-        const StripBuffers& sb = strips_[static_cast<std::size_t>(t)];
-        for (std::size_t q = 0; q < sb.held_rows.size(); ++q) {
-            const auto [c0, c1] = sb.held_cols[q];
-            const RegimeFlags* held = sb.held_regime.data() + static_cast<std::ptrdiff_t>(q) * sb.stride +
-                                      kGhostLayers + c0;
-            std::transform(held, held + (c1 - c0), regime_.data() + s.h.index(c0, sb.held_rows[q]),
-                           stored_regime);
-        }
-    }
-    for (int t = 0; t < team; ++t) {
-        const StripBuffers& sb = strips_[static_cast<std::size_t>(t)];
-        for (int q = 0; q < sb.waiting_used; ++q) {
-            const StripBuffers::WaitingRows& wr = sb.waiting[static_cast<std::size_t>(q)];
-            const std::size_t width = static_cast<std::size_t>(wr.i1 - wr.i0);
-            for (int j = wr.j0; j < wr.j1; ++j) {
-                const std::ptrdiff_t k = wr.at(wr.i0, j);
-                std::copy_n(wr.h.data() + k, width, s.h.row(j) + wr.i0);
-                std::copy_n(wr.hu.data() + k, width, s.hu.row(j) + wr.i0);
-                std::copy_n(wr.hv.data() + k, width, s.hv.row(j) + wr.i0);
-            }
-        }
-    }
     // The whole box would have given every empty cell of its per-cell stage the regime
     // at start (regime_row); the bands computed those of their own rows and columns.
     if (regimes && bands_.size() > 1) {
