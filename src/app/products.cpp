@@ -53,7 +53,8 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     const std::span<const double> depth = in.maps.max_depth();
     // One hillshade under every quick-look. (The elevation's grid-sized copy lives only
     // while a file needs it: each is first-touched memory on a large grid.)
-    const std::vector<double> shade = gis::hillshade(g, in.scene.terrain.elevation.interior());
+    // Drawn as the quick-looks draw it (per pixel), so the cells' hillshade is freed here.
+    const gis::QuicklookShade shade = gis::quicklook_shade(g, gis::hillshade(g, in.scene.terrain.elevation.interior()));
 
     const std::string pressure_breaks = "classes: low < " + std::to_string(out.pressure_low_kpa) +
                                         " kPa <= medium < " + std::to_string(out.pressure_high_kpa) +

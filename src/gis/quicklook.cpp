@@ -58,47 +58,39 @@ namespace {
 // Whether the map gives the cell a value to colour (else only the hillshade shows).
 bool has_value(double v, double nodata) { return v != nodata && std::isfinite(v); }
 
-// What a quick-look draws: a value and a hillshade tone per pixel, on the grid of its
-// pixels (solver orientation, like the maps).
-struct Picture {
-    Grid grid;
-    std::vector<double> values, shade;
-};
+// The grid of a quick-look's pixels: blocks of f x f cells of g.
+Grid pixel_grid(const Grid& g, int f) {
+    Grid p = g;
+    p.nx = (g.nx + f - 1) / f;
+    p.ny = (g.ny + f - 1) / f;
+    p.dx = g.dx * f;
+    p.dy = g.dy * f;
+    return p;
+}
 
-// The picture of blocks of f x f cells (f > 1): per block the `block` of its valid values
-// (nodata when none is) and the mean of its cells' hillshade.
-Picture in_blocks(const Grid& g, const std::vector<double>& values, const std::vector<double>& shade,
-                  double nodata, QuicklookBlock block, int f) {
-    Picture p;
-    p.grid = g;
-    p.grid.nx = (g.nx + f - 1) / f;
-    p.grid.ny = (g.ny + f - 1) / f;
-    p.grid.dx = g.dx * f;
-    p.grid.dy = g.dy * f;
-    p.values.resize(p.grid.cells());
-    p.shade.resize(p.grid.cells());
+// Per block of f x f cells (f > 1) the `block` of its valid values (nodata when none is).
+std::vector<double> values_in_blocks(const Grid& g, const std::vector<double>& values, double nodata,
+                                     QuicklookBlock block, int f) {
+    const Grid p = pixel_grid(g, f);
+    std::vector<double> out(p.cells());
     const bool largest = block == QuicklookBlock::maximum;
-    for (int bj = 0; bj < p.grid.ny; ++bj) {
+    for (int bj = 0; bj < p.ny; ++bj) {
         const int j0 = bj * f, j1 = std::min(j0 + f, g.ny);
-        for (int bi = 0; bi < p.grid.nx; ++bi) {
+        for (int bi = 0; bi < p.nx; ++bi) {
             const int i0 = bi * f, i1 = std::min(i0 + f, g.nx);
-            double tone = 0.0, chosen = nodata;
+            double chosen = nodata;
             bool any = false;
             for (int j = j0; j < j1; ++j)
                 for (int i = i0; i < i1; ++i) {
-                    const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
-                    tone += shade[k];
-                    const double v = values[k];
+                    const double v = values[static_cast<std::size_t>(j) * g.nx + i];
                     if (!has_value(v, nodata)) continue;
                     if (!any || (largest ? v > chosen : v < chosen)) chosen = v;
                     any = true;
                 }
-            const std::size_t b = static_cast<std::size_t>(bj) * p.grid.nx + bi;
-            p.values[b] = chosen;
-            p.shade[b] = tone / static_cast<double>((j1 - j0) * (i1 - i0));
+            out[static_cast<std::size_t>(bj) * p.nx + bi] = chosen;
         }
     }
-    return p;
+    return out;
 }
 
 }  // namespace
@@ -111,19 +103,53 @@ void write_quicklook_png(const std::string& path, const GeoGrid& geo,
     write_quicklook_png_over(path, geo, values, hillshade(geo.grid, elevation), ramp, nodata, block);
 }
 
+QuicklookShade quicklook_shade(const Grid& g, std::vector<double> shade_of_cells) {
+    QuicklookShade q;
+    q.cells_per_pixel = quicklook_cells_per_pixel(g);
+    const int f = q.cells_per_pixel;
+    if (f == 1) {
+        q.tone = std::move(shade_of_cells);
+        return q;
+    }
+    // The mean of each block's cells, summed row by row.
+    const Grid p = pixel_grid(g, f);
+    q.tone.resize(p.cells());
+    for (int bj = 0; bj < p.ny; ++bj) {
+        const int j0 = bj * f, j1 = std::min(j0 + f, g.ny);
+        for (int bi = 0; bi < p.nx; ++bi) {
+            const int i0 = bi * f, i1 = std::min(i0 + f, g.nx);
+            double tone = 0.0;
+            for (int j = j0; j < j1; ++j)
+                for (int i = i0; i < i1; ++i) tone += shade_of_cells[static_cast<std::size_t>(j) * g.nx + i];
+            q.tone[static_cast<std::size_t>(bj) * p.nx + bi] = tone / static_cast<double>((j1 - j0) * (i1 - i0));
+        }
+    }
+    return q;
+}
+
 void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
                               const std::vector<double>& values_of_cells,
                               const std::vector<double>& shade_of_cells, const ColorRamp& ramp,
                               double nodata, QuicklookBlock block) {
-    detail::GdalErrorScope errors;
     if (values_of_cells.size() != geo.grid.cells() || shade_of_cells.size() != geo.grid.cells())
         throw OutputError(path, "map and hillshade sizes differ from the grid");
+    write_quicklook_png_over(path, geo, values_of_cells, quicklook_shade(geo.grid, shade_of_cells), ramp,
+                             nodata, block);
+}
+
+void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
+                              const std::vector<double>& values_of_cells, const QuicklookShade& pixels,
+                              const ColorRamp& ramp, double nodata, QuicklookBlock block) {
+    detail::GdalErrorScope errors;
     const int f = quicklook_cells_per_pixel(geo.grid);
-    Picture blocks;
-    if (f > 1) blocks = in_blocks(geo.grid, values_of_cells, shade_of_cells, nodata, block, f);
-    const Grid& g = f > 1 ? blocks.grid : geo.grid;
-    const std::vector<double>& values = f > 1 ? blocks.values : values_of_cells;
-    const std::vector<double>& shade = f > 1 ? blocks.shade : shade_of_cells;
+    const Grid g = f > 1 ? pixel_grid(geo.grid, f) : geo.grid;
+    if (values_of_cells.size() != geo.grid.cells() || pixels.cells_per_pixel != f ||
+        pixels.tone.size() != g.cells())
+        throw OutputError(path, "map and hillshade sizes differ from the grid");
+    std::vector<double> blocks;
+    if (f > 1) blocks = values_in_blocks(geo.grid, values_of_cells, nodata, block, f);
+    const std::vector<double>& values = f > 1 ? blocks : values_of_cells;
+    const std::vector<double>& shade = pixels.tone;
     std::vector<std::uint8_t> rgb[3];
     for (auto& c : rgb) c.resize(g.cells());
     for (std::size_t k = 0; k < g.cells(); ++k) {

@@ -5,6 +5,9 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <iterator>
+#include <fstream>
 #include <limits>
 
 #include "avalanche/core/error.hpp"
@@ -267,6 +270,39 @@ TEST(Quicklook, CellsPerPixelKeepTheLongestSideWithinTheLimit) {
     EXPECT_EQ(f(kQuicklookMaxPixels + 1, 10), 2);
     EXPECT_EQ(f(10, 2 * kQuicklookMaxPixels), 2);
     EXPECT_EQ(f(2 * kQuicklookMaxPixels + 1, 3), 3);
+}
+
+// The pixels' hillshade made once (quicklook_shade): the mean of each block's cells, the
+// cut-short blocks at the edges included; a quick-look drawn over it is the file drawn
+// over the cells' hillshade, byte for byte.
+TEST(Quicklook, ShadeOfThePixelsIsTheMeanOfTheirCells) {
+    TempDir tmp;
+    const int nx = 2 * kQuicklookMaxPixels + 4, ny = 5;  // 3 x 3 cells a pixel, 1367 x 2
+    GeoGrid geo = utm_grid(nx, ny);
+    std::vector<double> shade(geo.grid.cells()), depth(geo.grid.cells(), -9999.0);
+    for (std::size_t k = 0; k < shade.size(); ++k) shade[k] = static_cast<double>(k % 101) / 100.0;
+    for (std::size_t k = 0; k < depth.size(); k += 13) depth[k] = 0.01 * static_cast<double>(k % 301);
+    const QuicklookShade q = quicklook_shade(geo.grid, shade);
+    ASSERT_EQ(q.cells_per_pixel, 3);
+    ASSERT_EQ(q.tone.size(), 1367u * 2u);
+    const auto cell = [&](int i, int j) { return shade[static_cast<std::size_t>(j) * nx + i]; };
+    double first = 0.0, corner = 0.0;
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) first += cell(i, j);
+    for (int j = 3; j < 5; ++j)
+        for (int i = nx - 2; i < nx; ++i) corner += cell(i, j);
+    EXPECT_DOUBLE_EQ(q.tone[0], first / 9.0);
+    EXPECT_DOUBLE_EQ(q.tone[1367 + 1366], corner / 4.0) << "the cut-short corner block";
+    write_quicklook_png_over(tmp.file("cells.png"), geo, depth, shade, depth_ramp(), -9999.0);
+    write_quicklook_png_over(tmp.file("pixels.png"), geo, depth, q, depth_ramp(), -9999.0);
+    std::ifstream a(tmp.file("cells.png"), std::ios::binary), b(tmp.file("pixels.png"), std::ios::binary);
+    const std::string fa((std::istreambuf_iterator<char>(a)), {}), fb((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_FALSE(fa.empty());
+    EXPECT_TRUE(fa == fb);
+    // A shade made for another grid is refused.
+    EXPECT_THROW(write_quicklook_png_over(tmp.file("other.png"), utm_grid(4, 1), {1.0, 1.0, 1.0, 1.0}, q,
+                                          depth_ramp(), -9999.0),
+                 OutputError);
 }
 
 // A grid longer than kQuicklookMaxPixels: 3 x 3 cells a pixel. A block's colour is that
