@@ -5,13 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "avalanche/core/field.hpp"
+#include "support/resident_memory.hpp"
 
 using namespace avalanche;
 
@@ -26,7 +26,9 @@ TEST(FieldStorage, ArraysAreAlignedAndLargeOnesStartOnAHugePage) {
     fields.emplace_back(100, 2.5);  // small: the ordinary heap
     for (const FieldStorage& f : fields) {
         EXPECT_EQ(address(f.data()) % 64, 0u);
-        if (f.size() == large) EXPECT_EQ(address(f.data()) % kHugePageBytes, 0u);
+        if (f.size() == large) {
+            EXPECT_EQ(address(f.data()) % kHugePageBytes, 0u);
+        }
     }
     EXPECT_EQ(fields[3][large - 1], 1.5);
     EXPECT_EQ(fields[8][99], 2.5);
@@ -49,18 +51,6 @@ TEST(FieldStorage, FieldsCopyMoveAndTakeOrdinaryVectors) {
     EXPECT_EQ(flags.back(), 3);
 }
 
-namespace {
-// Resident memory of this process in bytes (Linux), or -1.
-long long resident_bytes() {
-    std::FILE* f = std::fopen("/proc/self/statm", "r");
-    if (!f) return -1;
-    long long pages = 0, resident = 0;
-    const int n = std::fscanf(f, "%lld %lld", &pages, &resident);
-    std::fclose(f);
-    return n == 2 ? resident * 4096 : -1;
-}
-}  // namespace
-
 // Fields of zeros are zero without being written: a large one holds no memory until its
 // cells are written (terrain made on demand, a state whose flow covers part of the grid),
 // and small ones are zeroed by the allocator.
@@ -69,12 +59,12 @@ TEST(FieldStorage, ZeroFieldsAreZeroAndLargeOnesUntouchedUntilWritten) {
     for (const double v : small.raw()) ASSERT_EQ(v, 0.0);
     const CellVector<std::int32_t> flags(1000);
     for (const std::int32_t v : flags) ASSERT_EQ(v, 0);
-    const long long before = resident_bytes();
+    const long long before = test::resident_bytes();
     if (before < 0) GTEST_SKIP() << "no /proc/self/statm";
     Field2D large(4000, 2000, 2);  // 64 MB
     large(10, 10) = 1.0;
     large(3999, 1999) = 2.0;
-    const long long grown = resident_bytes() - before;
+    const long long grown = test::resident_bytes() - before;
     EXPECT_LT(grown, 16ll << 20) << "a field of zeros was written";
     EXPECT_EQ(large(2000, 1000), 0.0);
     EXPECT_EQ(large(3999, 1999), 2.0);
@@ -114,11 +104,11 @@ int huge_page_eligible(const void* p) {
 // 64 rows of this 4000-column field (field_storage.hpp). A field written whole (made
 // with a value, filled, advised, or a copy) may take huge pages.
 TEST(FieldStorage, OnlyFieldsWrittenWholeTakeHugePages) {
-    const long long before = resident_bytes();
+    const long long before = test::resident_bytes();
     if (before < 0) GTEST_SKIP() << "no /proc/self/statm";
     Field2D sparse(4000, 2000, 2);  // 64 MB, 32 kB per row
     for (int j = 0; j < 256; ++j) sparse(10, j) = 1.0;  // 256 small pages = 1 MiB
-    const long long grown = resident_bytes() - before;
+    const long long grown = test::resident_bytes() - before;
     EXPECT_LT(grown, 3ll << 20) << "rows written one cell each took huge pages";
     EXPECT_EQ(sparse(10, 255), 1.0);
     EXPECT_EQ(sparse(11, 255), 0.0);

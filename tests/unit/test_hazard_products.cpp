@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "avalanche/core/simulation.hpp"
@@ -13,6 +12,7 @@
 #include "avalanche/output/runout.hpp"
 #include "avalanche/physics/chute.hpp"
 #include "avalanche/physics/release.hpp"
+#include "support/resident_memory.hpp"
 
 using namespace avalanche;
 
@@ -30,14 +30,10 @@ namespace {
 // Each step's impact pressure and each cell's first arrival, kept cell by cell as the
 // maps once stored them (a pressure map updated with rho |u|^2 at every step, arrival
 // -1 until the cell is reached), to check the maps that derive both.
-class StepRecord : public StepObserver {
-public:
-    StepRecord(const Grid& g, double density) : density_(density), pressure_(g.cells(), 0.0), arrival_(g.cells(), -1.0) {}
+struct StepRecord : StepObserver {
+    StepRecord(const Grid& g, double rho) : density(rho), pressure(g.cells(), 0.0), arrival(g.cells(), -1.0) {}
     void on_start(const SimulationView& v) override { record(v); }
     void on_step(const SimulationView& v) override { record(v); }
-    std::vector<double> pressure_, arrival_;
-
-private:
     void record(const SimulationView& v) {
         const OutputParams out;
         for (int j = 0; j < v.grid.ny; ++j)
@@ -46,11 +42,12 @@ private:
                 if (!(hn >= out.h_threshold)) continue;
                 const std::size_t k = static_cast<std::size_t>(j) * v.grid.nx + i;
                 const double speed = true_speed(v.state, v.terrain, i, j);
-                pressure_[k] = std::max(pressure_[k], density_ / 1000.0 * speed * speed);
-                if (arrival_[k] < 0.0) arrival_[k] = v.t;
+                pressure[k] = std::max(pressure[k], density / 1000.0 * speed * speed);
+                if (arrival[k] < 0.0) arrival[k] = v.t;
             }
     }
-    double density_;
+    double density;
+    std::vector<double> pressure, arrival;
 };
 
 struct ChuteRun {
@@ -108,8 +105,8 @@ TEST(HazardMaps, MaximaArrivalAndRunoutAreConsistent) {
         EXPECT_NEAR(pressure[k], 2.0 * speed[k] * speed[k], 1e-9 * (1.0 + pressure[k]));  // rho = 2000 kg/m3, kPa
         // To the bit the maximum of the steps' pressures and the first step reaching
         // the cell, though the maps keep neither.
-        ASSERT_EQ(pressure[k], r.record->pressure_[k]) << "cell " << k;
-        ASSERT_EQ(arrival[k], r.record->arrival_[k]) << "cell " << k;
+        ASSERT_EQ(pressure[k], r.record->pressure[k]) << "cell " << k;
+        ASSERT_EQ(arrival[k], r.record->arrival[k]) << "cell " << k;
         ASSERT_EQ(r.maps->max_pressure(k), pressure[k]);
         ASSERT_EQ(r.maps->arrival_time(k), arrival[k]);
         const bool is_reached = depth[k] >= out.h_threshold;
@@ -160,22 +157,10 @@ TEST(HazardMaps, MaximaArrivalAndRunoutAreConsistent) {
     EXPECT_LT(m.travel_angle_deg, 30.0);
 }
 
-namespace {
-// Resident memory of this process in bytes (Linux), or -1.
-long long resident_bytes() {
-    std::FILE* f = std::fopen("/proc/self/statm", "r");
-    if (!f) return -1;
-    long long pages = 0, resident = 0;
-    const int n = std::fscanf(f, "%lld %lld", &pages, &resident);
-    std::fclose(f);
-    return n == 2 ? resident * 4096 : -1;
-}
-}  // namespace
-
 // On a large DEM the maps hold memory only where the flow went: made, read whole and
 // classified, the maps of a 2000 x 2000 grid (32 MB each) stay unwritten.
 TEST(HazardMaps, MapsOfALargeGridHoldNoMemoryUntilTheFlowReachesThem) {
-    const long long before = resident_bytes();
+    const long long before = test::resident_bytes();
     if (before < 0) GTEST_SKIP() << "no /proc/self/statm";
     const Grid g{2000, 2000, 1.0, 1.0};
     const HazardMaps maps(g, OutputParams{}, 2000.0);
@@ -186,7 +171,7 @@ TEST(HazardMaps, MapsOfALargeGridHoldNoMemoryUntilTheFlowReachesThem) {
     EXPECT_EQ(sum, 0.0);
     EXPECT_EQ(maps.arrival_time(123456), HazardMaps::kNotReached);
     EXPECT_EQ(maps.max_pressure(123456), 0.0);
-    const long long grown = resident_bytes() - before;
+    const long long grown = test::resident_bytes() - before;
     EXPECT_LT(grown, 16ll << 20) << "the maps of unreached cells were written";
 }
 
