@@ -51,9 +51,9 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     const gis::GeoGrid geo{g, in.scene.crs_wkt};
     const OutputParams& out = in.scenario.output;
     const std::span<const double> depth = in.maps.max_depth();
-    // One hillshade under every quick-look. (The elevation's grid-sized copy lives only
-    // while a file needs it: each is first-touched memory on a large grid.)
-    // Drawn as the quick-looks draw it (per pixel), so the cells' hillshade is freed here.
+    // One hillshade under every quick-look, already per pixel as they draw it: the cells'
+    // hillshade and the elevation's copy are freed here (each is a grid-sized array of
+    // first-touched memory on a large grid; dem.tif makes its own copy when written).
     const gis::QuicklookShade shade = gis::quicklook_shade(g, gis::hillshade(g, in.scene.terrain.elevation.interior()));
 
     const std::string pressure_breaks = "classes: low < " + std::to_string(out.pressure_low_kpa) +

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <numbers>
+#include <utility>
 
 #include "avalanche/core/error.hpp"
 #include "orientation.hpp"
@@ -68,28 +69,38 @@ Grid pixel_grid(const Grid& g, int f) {
     return p;
 }
 
-// Per block of f x f cells (f > 1) the `block` of its valid values (nodata when none is).
-std::vector<double> values_in_blocks(const Grid& g, const std::vector<double>& values, double nodata,
-                                     QuicklookBlock block, int f) {
+// Calls visit(b, j0, j1, i0, i1) for each block b of f x f cells of g (index
+// bj * nx + bi on pixel_grid(g, f)): rows [j0, j1), columns [i0, i1), the blocks at
+// the east and north edges cut short.
+template <class Visit>
+void for_each_block(const Grid& g, int f, Visit&& visit) {
     const Grid p = pixel_grid(g, f);
-    std::vector<double> out(p.cells());
-    const bool largest = block == QuicklookBlock::maximum;
     for (int bj = 0; bj < p.ny; ++bj) {
         const int j0 = bj * f, j1 = std::min(j0 + f, g.ny);
         for (int bi = 0; bi < p.nx; ++bi) {
             const int i0 = bi * f, i1 = std::min(i0 + f, g.nx);
-            double chosen = nodata;
-            bool any = false;
-            for (int j = j0; j < j1; ++j)
-                for (int i = i0; i < i1; ++i) {
-                    const double v = values[static_cast<std::size_t>(j) * g.nx + i];
-                    if (!has_value(v, nodata)) continue;
-                    if (!any || (largest ? v > chosen : v < chosen)) chosen = v;
-                    any = true;
-                }
-            out[static_cast<std::size_t>(bj) * p.nx + bi] = chosen;
+            visit(static_cast<std::size_t>(bj) * p.nx + bi, j0, j1, i0, i1);
         }
     }
+}
+
+// Per block of f x f cells (f > 1) the `block` of its valid values (nodata when none is).
+std::vector<double> values_in_blocks(const Grid& g, const std::vector<double>& values, double nodata,
+                                     QuicklookBlock block, int f) {
+    std::vector<double> out(pixel_grid(g, f).cells());
+    const bool largest = block == QuicklookBlock::maximum;
+    for_each_block(g, f, [&](std::size_t b, int j0, int j1, int i0, int i1) {
+        double chosen = nodata;
+        bool any = false;
+        for (int j = j0; j < j1; ++j)
+            for (int i = i0; i < i1; ++i) {
+                const double v = values[static_cast<std::size_t>(j) * g.nx + i];
+                if (!has_value(v, nodata)) continue;
+                if (!any || (largest ? v > chosen : v < chosen)) chosen = v;
+                any = true;
+            }
+        out[b] = chosen;
+    });
     return out;
 }
 
@@ -100,7 +111,8 @@ void write_quicklook_png(const std::string& path, const GeoGrid& geo,
                          const ColorRamp& ramp, double nodata, QuicklookBlock block) {
     if (elevation.size() != geo.grid.cells())
         throw OutputError(path, "map and elevation sizes differ from the grid");
-    write_quicklook_png_over(path, geo, values, hillshade(geo.grid, elevation), ramp, nodata, block);
+    write_quicklook_png_over(path, geo, values, quicklook_shade(geo.grid, hillshade(geo.grid, elevation)), ramp,
+                             nodata, block);
 }
 
 QuicklookShade quicklook_shade(const Grid& g, std::vector<double> shade_of_cells) {
@@ -112,18 +124,13 @@ QuicklookShade quicklook_shade(const Grid& g, std::vector<double> shade_of_cells
         return q;
     }
     // The mean of each block's cells, summed row by row.
-    const Grid p = pixel_grid(g, f);
-    q.tone.resize(p.cells());
-    for (int bj = 0; bj < p.ny; ++bj) {
-        const int j0 = bj * f, j1 = std::min(j0 + f, g.ny);
-        for (int bi = 0; bi < p.nx; ++bi) {
-            const int i0 = bi * f, i1 = std::min(i0 + f, g.nx);
-            double tone = 0.0;
-            for (int j = j0; j < j1; ++j)
-                for (int i = i0; i < i1; ++i) tone += shade_of_cells[static_cast<std::size_t>(j) * g.nx + i];
-            q.tone[static_cast<std::size_t>(bj) * p.nx + bi] = tone / static_cast<double>((j1 - j0) * (i1 - i0));
-        }
-    }
+    q.tone.resize(pixel_grid(g, f).cells());
+    for_each_block(g, f, [&](std::size_t b, int j0, int j1, int i0, int i1) {
+        double tone = 0.0;
+        for (int j = j0; j < j1; ++j)
+            for (int i = i0; i < i1; ++i) tone += shade_of_cells[static_cast<std::size_t>(j) * g.nx + i];
+        q.tone[b] = tone / static_cast<double>((j1 - j0) * (i1 - i0));
+    });
     return q;
 }
 
