@@ -48,6 +48,9 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
     const int w = 45;  // columns 1 .. w - 2 are updated: not a multiple of any vector width
     const double rx = 0.05, ry = 0.04, h_min = 1e-3, g = 9.81;
     long cells = 0, clamped = 0, emptied = 0, capped = 0, sped = 0;
+    // Cells outside their own bounds that the block's bounds finish (the kernel's second
+    // vector pass) and cells with no wet cell around.
+    long block_only = 0, no_wet_around = 0;
     for (int trial = 0; trial < 60; ++trial) {
         const bool metric = trial % 2 == 1;
         const double budget = trial % 3 == 0 ? std::numeric_limits<double>::infinity() : g * 30.0;
@@ -71,7 +74,9 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
             elev.v[k] = 40.0 * unit(rng);
             sx.v[k] = sym(rng);
             sy.v[k] = sym(rng);
-            if (unit(rng) < 0.8) {  // a wet cell's bounds, some narrow enough to bind
+            // A wet cell's bounds, some narrow enough to bind; every fourth trial has few,
+            // so that some cells have no wet cell around.
+            if (unit(rng) < (trial % 4 == 3 ? 0.05 : 0.8)) {
                 const double a = unit(rng) < 0.3 ? 0.1 * unit(rng) : 20.0 * unit(rng);
                 ulo.v[k] = u - a;
                 uhi.v[k] = u + a;
@@ -155,10 +160,14 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
                 }
                 const double inv = 1.0 / hn;  // one division for both quotients
                 double u = qu * inv, v = qv * inv;
-                if (!(ulo.v[k] <= u && u <= uhi.v[k] && vlo.v[k] <= v && v <= vhi.v[k])) {
+                const bool own = ulo.v[k] <= u && u <= uhi.v[k] && vlo.v[k] <= v && v <= vhi.v[k];
+                if (!own) {
                     ++clamped;
                     const double lo = min9(ulo, k), hi = max9(uhi, k, -kNoBound);
-                    if (lo > hi) return;
+                    if (lo > hi) {
+                        ++no_wet_around;
+                        return;
+                    }
                     const double vl = min9(vlo, k), vh = max9(vhi, k, -kNoBound);
                     if (u < lo || u > hi) u = std::clamp(u, lo, hi);
                     if (v < vl || v > vh) v = std::clamp(v, vl, vh);
@@ -168,9 +177,11 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
                     const double ww = sx.v[k] * u + sy.v[k] * v;
                     speed2 += ww * ww;
                 }
+                const double bound = max9(shi, k, 0.0);
+                const double cap2 = 2.0 * (budget - g * elev.v[k]);
+                if (!own && !(speed2 > bound * bound) && speed2 <= cap2) ++block_only;
                 if (speed2 > shi.v[k] * shi.v[k]) {
                     ++sped;
-                    const double bound = max9(shi, k, 0.0);
                     if (speed2 > bound * bound) {
                         const double scale = bound / std::sqrt(speed2);
                         u *= scale;
@@ -178,7 +189,6 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
                         speed2 = bound * bound;
                     }
                 }
-                const double cap2 = 2.0 * (budget - g * elev.v[k]);
                 if (speed2 > cap2) ++capped;
                 cap_speed(u, v, speed2, cap2);
                 ref_hu = hn * u;
@@ -198,6 +208,8 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
     EXPECT_GT(clamped, 50);
     EXPECT_GT(sped, 50);
     EXPECT_GT(capped, 20);
+    EXPECT_GT(block_only, 50);
+    EXPECT_GT(no_wet_around, 20);
 }
 
 TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {

@@ -3,10 +3,11 @@
 // the vector units like the face kernels (face_flux_rows.hpp): the donor factors of
 // the positivity-preserving flux scaling, and the conservative update with the
 // invariant-domain clamp and the energy cap. Each is the scalar loop body with its
-// branches turned into selections; the rare cases (a velocity outside the cell's own
-// invariant bounds, which needs the eight neighbours, or over the energy cap; a cell
-// the step would empty, for the donor factors) are finished by the scalar code
-// afterwards. Results are bitwise those of the scalar loops
+// branches turned into selections. A velocity outside the cell's own invariant bounds,
+// which needs the bounds of the eight neighbours, is finished by a second vector pass
+// over the blocks of 16 cells that hold one; the rare cases (a speed the block's bound
+// scales, the energy cap; a cell the step would empty, for the donor factors) by the
+// scalar code afterwards. Results are bitwise those of the scalar loops
 // (tests/regression/test_update_rows.cpp).
 //
 // All pointers address column 0 of the row; the row above is at +stride, the one
