@@ -413,7 +413,11 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     w.fac_end = std::max(w.fac_end, Je + 1);
 
     // 5. Conservative update, U -= tau/dx dF + tau/dy dG (Wang & Li 2017 eq. 5), with
-    // the scaled fluxes, into the strip's out rows (step 7 moves them on). Each face is
+    // the scaled fluxes. Every stage above is done with rows [J, Je) of s, and the
+    // thread's next strip reads none of them (it reads the stage rows it is handed), so
+    // they are updated in place (a cell's update reads only its own state), unless
+    // another thread's strip reads them (advect()): then into the strip's out rows,
+    // which step 7 moves on. Each face is
     // scaled by its donor's factor where it is used, so both cells of a face compute the
     // same product (x * 1 == x exactly for the unscaled faces). A zero mass flux has no
     // donor: its momentum (the pressure of a wall face) passes unscaled.
@@ -434,8 +438,11 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
                                 terrain_.elevation.raw().data() + kf,
                                 metric ? terrain_.sx.raw().data() + kf : nullptr,
                                 metric ? terrain_.sy.raw().data() + kf : nullptr};
-        update_row(in, up, w.out_h.data() + kw, w.out_hu.data() + kw, w.out_hv.data() + kw, b.i0,
-                   b.i1);
+        if (wait)
+            update_row(in, up, w.out_h.data() + kw, w.out_hu.data() + kw, w.out_hv.data() + kw,
+                       b.i0, b.i1);
+        else
+            update_row(in, up, s.h.row(r), s.hu.row(r), s.hv.row(r), b.i0, b.i1);
     }
 
     // 6. Volume through the open edges, after scaling, per boundary face (summed in
@@ -455,25 +462,22 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
             edge_outflow_[3][i] = outflow(fyh, w.k(i, ny), st, 1.0) * tau * grid_.dx;
     w.carried_for = Je;
 
-    // 7. The updated rows. Every stage above is done with rows [J, Je) of s, and the
-    // thread's next strip reads none of them (it reads the stage rows it is handed), so
-    // they can go into s at once, unless another thread's strip reads them (advect()).
+    // 7. The rows another thread's strip reads wait in wait (advect()).
+    if (!wait) return;
+    wait->j0 = J;
+    wait->j1 = Je;
+    wait->i0 = b.i0;
+    wait->i1 = b.i1;
     const std::size_t width = static_cast<std::size_t>(b.i1 - b.i0);
-    if (wait) {
-        wait->j0 = J;
-        wait->j1 = Je;
-        wait->i0 = b.i0;
-        wait->i1 = b.i1;
-        const std::size_t n = width * static_cast<std::size_t>(Je - J);
-        for (auto* a : {&wait->h, &wait->hu, &wait->hv})
-            if (a->size() < n) a->resize(n);
-    }
+    const std::size_t n = width * static_cast<std::size_t>(Je - J);
+    for (auto* a : {&wait->h, &wait->hu, &wait->hv})
+        if (a->size() < n) a->resize(n);
     for (int r = J; r < Je; ++r) {
         const std::ptrdiff_t kw = w.k(b.i0, r);
-        const std::ptrdiff_t kt = wait ? wait->at(b.i0, r) : 0;
-        std::copy_n(w.out_h.data() + kw, width, wait ? wait->h.data() + kt : s.h.row(r) + b.i0);
-        std::copy_n(w.out_hu.data() + kw, width, wait ? wait->hu.data() + kt : s.hu.row(r) + b.i0);
-        std::copy_n(w.out_hv.data() + kw, width, wait ? wait->hv.data() + kt : s.hv.row(r) + b.i0);
+        const std::ptrdiff_t kt = wait->at(b.i0, r);
+        std::copy_n(w.out_h.data() + kw, width, wait->h.data() + kt);
+        std::copy_n(w.out_hu.data() + kw, width, wait->hu.data() + kt);
+        std::copy_n(w.out_hv.data() + kw, width, wait->hv.data() + kt);
     }
 }
 

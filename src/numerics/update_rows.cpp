@@ -42,31 +42,20 @@ AVALANCHE_SIMD_CLONES void donor_factor_clone(const FaceFluxRows& f, const doubl
         if (std::isnan(factor[i])) factor[i] = h[i] / outgoing(i);
 }
 
-// The scalar update of one cell, the definition the vector loops follow; used for the
-// cells the block's speed bound scales or the energy cap reaches (and a NaN velocity).
+// The scalar finish of one cell update_clone marked (its depth kept negated, its momentum
+// before the bounds): the velocity bounds, the block's speed bound and the energy cap,
+// the definition the vector loops follow. Used for the cells the block's speed bound
+// scales or the energy cap reaches (and a NaN velocity).
 void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric, double* h_new,
                  double* hu_new, double* hv_new, int i) {
+    // The depth and momentum update_clone computed, kept for the marked cell (the
+    // state may have been overwritten: the update works in place).
+    const double hn = -h_new[i];
+    const double qu = hu_new[i], qv = hv_new[i];
     const std::ptrdiff_t st = p.stride;
-    const FaceFluxRows& f = in.f;
-    const double* factor = in.factor;
-    const double fw = donor_factor_of(f.fx_h[i], factor[i - 1], factor[i]);
-    const double fe = donor_factor_of(f.fx_h[i + 1], factor[i], factor[i + 1]);
-    const double fs = donor_factor_of(f.fy_h[i], factor[i - st], factor[i]);
-    const double fn = donor_factor_of(f.fy_h[i + st], factor[i], factor[i + st]);
-    const double rx = p.rx, ry = p.ry;
-    double hn = in.h[i] - rx * (f.fx_h[i + 1] * fe - f.fx_h[i] * fw) -
-                ry * (f.fy_h[i + st] * fn - f.fy_h[i] * fs);
-    if (hn < 0.0) hn = 0.0;
     h_new[i] = hn;
-    const double qu = in.hu[i] - (rx * (f.fx_hu[i + 1] * fe - f.fx_hu[i] * fw) +
-                                  ry * (f.fy_hu[i + st] * fn - f.fy_hu[i] * fs));
-    const double qv = in.hv[i] - (rx * (f.fx_hv[i + 1] * fe - f.fx_hv[i] * fw) +
-                                  ry * (f.fy_hv[i + st] * fn - f.fy_hv[i] * fs));
-    if (hn <= 0.0) {
-        hu_new[i] = hv_new[i] = 0.0;
-        return;
-    }
-    // Min / max over the 3 x 3 block around i (exact, so the order does not matter).
+    // Min / max over the 3 x 3 block around i (bounded_clone takes them in the same
+    // order, which decides between a +0 and a -0).
     const auto min9 = [st, i](const double* b) {
         double m = kNoVelocityBound;
         for (std::ptrdiff_t r = i - st; r <= i + st; r += st)
@@ -115,10 +104,12 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
 // update_cell: their depth is stored negated (a NaN depth stays NaN) and their momentum
 // as it was before the bounds. Returns the number of cells marked, so that the caller
 // can skip its search for them when there is none (the common case).
+// The update may be in place (h_new == in.h, ...): each cell reads only its own state
+// before it writes it, so these pointers are not restrict; omp simd vectorises anyway.
 template <bool Metric>
 AVALANCHE_SIMD_CLONES double update_clone(const UpdateRowInput& in, const UpdateRowParams& p,
-                                          double* __restrict h_new, double* __restrict hu_new,
-                                          double* __restrict hv_new, int i0, int i1) {
+                                          double* h_new, double* hu_new, double* hv_new, int i0,
+                                          int i1) {
     const std::ptrdiff_t st = p.stride;
     const double rx = p.rx, ry = p.ry, budget = p.energy_budget, g = p.gravity;
     const double* __restrict fxh = in.f.fx_h;
@@ -128,9 +119,9 @@ AVALANCHE_SIMD_CLONES double update_clone(const UpdateRowInput& in, const Update
     const double* __restrict fyu = in.f.fy_hu;
     const double* __restrict fyv = in.f.fy_hv;
     const double* __restrict factor = in.factor;
-    const double* __restrict h = in.h;
-    const double* __restrict hu = in.hu;
-    const double* __restrict hv = in.hv;
+    const double* h = in.h;
+    const double* hu = in.hu;
+    const double* hv = in.hv;
     const double* __restrict ulo = in.u_lo;
     const double* __restrict uhi = in.u_hi;
     const double* __restrict vlo = in.v_lo;

@@ -49,7 +49,9 @@ struct UpdateRowParams {
 };
 
 // U -= rx dF + ry dG with the donor-scaled fluxes, then the velocity clamps and the
-// energy cap, for cells i0 .. i1 - 1; writes the updated (h, hu, hv).
+// energy cap, for cells i0 .. i1 - 1; writes the updated (h, hu, hv). In place if
+// asked (h_new == in.h, hu_new == in.hu, hv_new == in.hv): a cell's update reads no
+// other cell's state.
 void update_row(const UpdateRowInput& in, const UpdateRowParams& p, double* h_new, double* hu_new,
                 double* hv_new, int i0, int i1) noexcept;
 
