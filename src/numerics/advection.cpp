@@ -422,7 +422,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     // same product (x * 1 == x exactly for the unscaled faces). A zero mass flux has no
     // donor: its momentum (the pressure of a wall face) passes unscaled.
     const bool metric = terrain_.has_metric;
-    const UpdateRowParams up{rx, ry, st, energy_budget_, numerics_.gravity};
+    const UpdateRowParams up{rx, ry, st, energy_budget_, numerics_.gravity, h_min_};
     for (int r = J; r < Je; ++r) {
         const std::ptrdiff_t kw = w.k(0, r), kf = full(0, r);
         const UpdateRowInput in{rows_at(kw),

@@ -264,7 +264,9 @@ void Stepper::step(State& s, double dt) {
 // ---------------------------------------------------------------- advection L(tau): advection.cpp
 
 // Thin-layer rule (Wang & Li 2017 section 2.2.3): a cell thinner than h_min takes
-// the velocity of its deepest wet neighbour, or stops if it has none.
+// the velocity of its deepest wet neighbour, or stops if it has none. Every such cell
+// of the bands is written, whatever its momentum was: the update relies on it and
+// gives these cells none (UpdateRowParams::h_thin).
 void Stepper::thin_layer_velocities(State& s) const {
     constexpr int kThinBlock = 16;
     const ActiveBox b = box_;

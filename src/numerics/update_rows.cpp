@@ -43,9 +43,8 @@ AVALANCHE_SIMD_CLONES void donor_factor_clone(const FaceFluxRows& f, const doubl
 }
 
 // The scalar finish of one cell update_clone marked (its depth kept negated, its momentum
-// before the bounds): the velocity bounds, the block's speed bound and the energy cap,
-// the definition the vector loops follow. Used for the cells the block's speed bound
-// scales or the energy cap reaches (and a NaN velocity).
+// before the bounds): the velocity clamp to the 3 x 3 block's bounds, the block's speed
+// bound and the energy cap, the definition the vector loop follows.
 void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric, double* h_new,
                  double* hu_new, double* hv_new, int i) {
     // The depth and momentum update_clone computed, kept for the marked cell (the
@@ -54,8 +53,7 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
     const double qu = hu_new[i], qv = hv_new[i];
     const std::ptrdiff_t st = p.stride;
     h_new[i] = hn;
-    // Min / max over the 3 x 3 block around i (bounded_clone takes them in the same
-    // order, which decides between a +0 and a -0).
+    // Min / max over the 3 x 3 block around i (exact, so the order does not matter).
     const auto min9 = [st, i](const double* b) {
         double m = kNoVelocityBound;
         for (std::ptrdiff_t r = i - st; r <= i + st; r += st)
@@ -100,9 +98,9 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
 }
 
 // The common case of every cell (the velocity within the cell's own bounds and under
-// the energy cap) with selections; the other cells are marked for bounded_clone and
-// update_cell: their depth is stored negated (a NaN depth stays NaN) and their momentum
-// as it was before the bounds. Returns the number of cells marked, so that the caller
+// the energy cap) with selections; the other cells are marked for update_cell: their
+// depth is stored negated (a NaN depth stays NaN) and their momentum as it was before
+// the bounds. Returns the number of cells marked, so that the caller
 // can skip its search for them when there is none (the common case).
 // The update may be in place (h_new == in.h, ...): each cell reads only its own state
 // before it writes it, so these pointers are not restrict; omp simd vectorises anyway.
@@ -112,6 +110,7 @@ AVALANCHE_SIMD_CLONES double update_clone(const UpdateRowInput& in, const Update
                                           int i1) {
     const std::ptrdiff_t st = p.stride;
     const double rx = p.rx, ry = p.ry, budget = p.energy_budget, g = p.gravity;
+    const double h_thin = p.h_thin;
     const double* __restrict fxh = in.f.fx_h;
     const double* __restrict fxu = in.f.fx_hu;
     const double* __restrict fxv = in.f.fx_hv;
@@ -157,7 +156,10 @@ AVALANCHE_SIMD_CLONES double update_clone(const UpdateRowInput& in, const Update
 #pragma omp simd reduction(+ : marked)
     for (int i = i0; i < i1; ++i) {
         const double hn = h_new[i];
-        const bool empty = hn <= 0.0;
+        // An empty cell, or one the thin-layer rule gives its velocity after the
+        // advection: zero momentum (at the margins of a real flow most of the cells
+        // outside their own bounds are such films: their bounds were dry).
+        const bool empty = (hn <= 0.0) | (hn < h_thin);
         const double inv = 1.0 / hn;
         const double qu = hu_new[i], qv = hv_new[i];
         const double u = qu * inv, v = qv * inv;  // discarded when empty
@@ -188,104 +190,6 @@ AVALANCHE_SIMD_CLONES double update_clone(const UpdateRowInput& in, const Update
 // A cell update_clone marked: its depth stored negated, or NaN.
 AVALANCHE_INLINE bool is_marked(double h_stored) { return !(h_stored >= 0.0); }
 
-constexpr int kBoundsBlock = 16;
-
-// The marked cells of update_clone finished with the bounds of their 3 x 3 block, as
-// update_cell does, in blocks of kBoundsBlock cells that hold a marked cell: at a
-// flow's margins a quarter of the cells leave their own bounds, and update_cell
-// (scalar) took twice the time of the vector update on a real scene. The cells the
-// block's speed bound scales or the energy cap reaches (and a NaN velocity) stay
-// marked for update_cell, unchanged; returns their number. The block's minima and
-// maxima are taken in update_cell's order (min / max of an initializer list: the
-// first extreme), so that signed zeros come out the same.
-template <bool Metric>
-AVALANCHE_SIMD_CLONES double bounded_clone(const UpdateRowInput& in, const UpdateRowParams& p,
-                                           double* __restrict h_new, double* __restrict hu_new,
-                                           double* __restrict hv_new, int i0, int i1) {
-    const std::ptrdiff_t st = p.stride;
-    const double budget = p.energy_budget, g = p.gravity;
-    const double* __restrict ulo = in.u_lo;
-    const double* __restrict uhi = in.u_hi;
-    const double* __restrict vlo = in.v_lo;
-    const double* __restrict vhi = in.v_hi;
-    const double* __restrict shi = in.speed_hi;
-    const double* __restrict elev = in.elevation;
-    const double* __restrict sx = in.sx;
-    const double* __restrict sy = in.sy;
-    // Written out, row by row: a loop over the rows keeps GCC 12 from vectorising the
-    // AVX2 clone.
-    const auto min9 = [st](const double* __restrict b, int i) {
-        const double* __restrict s = b + i - st;
-        const double* __restrict c = b + i;
-        const double* __restrict n = b + i + st;
-        double m = kNoVelocityBound;
-        m = s[-1] < m ? s[-1] : m;
-        m = s[0] < m ? s[0] : m;
-        m = s[1] < m ? s[1] : m;
-        m = c[-1] < m ? c[-1] : m;
-        m = c[0] < m ? c[0] : m;
-        m = c[1] < m ? c[1] : m;
-        m = n[-1] < m ? n[-1] : m;
-        m = n[0] < m ? n[0] : m;
-        return n[1] < m ? n[1] : m;
-    };
-    const auto max9 = [st](const double* __restrict b, int i, double init) {
-        const double* __restrict s = b + i - st;
-        const double* __restrict c = b + i;
-        const double* __restrict n = b + i + st;
-        double m = init;
-        m = m < s[-1] ? s[-1] : m;
-        m = m < s[0] ? s[0] : m;
-        m = m < s[1] ? s[1] : m;
-        m = m < c[-1] ? c[-1] : m;
-        m = m < c[0] ? c[0] : m;
-        m = m < c[1] ? c[1] : m;
-        m = m < n[-1] ? n[-1] : m;
-        m = m < n[0] ? n[0] : m;
-        return m < n[1] ? n[1] : m;
-    };
-    long left = 0;
-    for (int b0 = i0; b0 < i1; b0 += kBoundsBlock) {
-        const int b1 = std::min(b0 + kBoundsBlock, i1);
-        bool in_block = false;
-        for (int i = b0; i < b1 && !in_block; ++i) in_block = is_marked(h_new[i]);
-        if (!in_block) continue;
-        int in_scalar = 0;
-#pragma omp simd reduction(+ : in_scalar)
-        for (int i = b0; i < b1; ++i) {
-            const double stored = h_new[i];
-            const bool marked = is_marked(stored);
-            const double hn = -stored;
-            const double inv = 1.0 / hn;  // as update_cell
-            const double u0 = hu_new[i] * inv, v0 = hv_new[i] * inv;
-            const double ul = min9(ulo, i), uh = max9(uhi, i, -kNoVelocityBound);
-            const double vl = min9(vlo, i), vh = max9(vhi, i, -kNoVelocityBound);
-            const double sb = max9(shi, i, 0.0);
-            const bool none = ul > uh;  // no wet cell around: nothing can have moved it
-            // update_cell clamps only a velocity outside its own bounds; within them it
-            // is within the block's too, and the clamp keeps it.
-            const double u = u0 < ul ? ul : (u0 > uh ? uh : u0);
-            const double v = v0 < vl ? vl : (v0 > vh ? vh : v0);
-            double speed2 = u * u + v * v;
-            if constexpr (Metric) {
-                const double w = sx[i] * u + sy[i] * v;
-                speed2 += w * w;
-            }
-            // Scaled by the block's speed bound (never when within the own bound, which
-            // the block's holds), capped, or NaN: left to update_cell.
-            const bool scalar =
-                (!none) & ((speed2 > sb * sb) | !(speed2 <= 2.0 * (budget - g * elev[i])));
-            const bool done = marked & (!scalar);
-            h_new[i] = done ? hn : stored;
-            hu_new[i] = done ? (none ? 0.0 : hn * u) : hu_new[i];
-            hv_new[i] = done ? (none ? 0.0 : hn * v) : hv_new[i];
-            in_scalar += marked & scalar ? 1 : 0;
-        }
-        left += in_scalar;
-    }
-    return static_cast<double>(left);
-}
-
 }  // namespace
 
 void donor_factor_row(const FaceFluxRows& f, const double* h, double rx, double ry, double h_min,
@@ -299,9 +203,6 @@ void update_row(const UpdateRowInput& in, const UpdateRowParams& p, double* h_ne
     const double marked = metric ? update_clone<true>(in, p, h_new, hu_new, hv_new, i0, i1)
                                  : update_clone<false>(in, p, h_new, hu_new, hv_new, i0, i1);
     if (marked == 0.0) return;
-    const double left = metric ? bounded_clone<true>(in, p, h_new, hu_new, hv_new, i0, i1)
-                               : bounded_clone<false>(in, p, h_new, hu_new, hv_new, i0, i1);
-    if (left == 0.0) return;
     for (int i = i0; i < i1; ++i)
         if (is_marked(h_new[i])) update_cell(in, p, metric, h_new, hu_new, hv_new, i);
 }

@@ -48,12 +48,14 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
     const int w = 45;  // columns 1 .. w - 2 are updated: not a multiple of any vector width
     const double rx = 0.05, ry = 0.04, h_min = 1e-3, g = 9.81;
     long cells = 0, clamped = 0, emptied = 0, capped = 0, sped = 0;
-    // Cells outside their own bounds that the block's bounds finish (the kernel's second
-    // vector pass) and cells with no wet cell around.
-    long block_only = 0, no_wet_around = 0;
+    // Cells outside their own bounds that the block's bounds finish, cells with no wet
+    // cell around, cells left thinner than h_thin (zero momentum: the thin-layer rule
+    // gives them their velocity after the advection).
+    long block_only = 0, no_wet_around = 0, thin = 0;
     for (int trial = 0; trial < 60; ++trial) {
         const bool metric = trial % 2 == 1;
         const double budget = trial % 3 == 0 ? std::numeric_limits<double>::infinity() : g * 30.0;
+        const double h_thin = trial % 5 == 2 ? 0.4 : 0.0;
         Rows fxh(w), fxu(w), fxv(w), fyh(w), fyu(w), fyv(w), h(w), hu(w), hv(w), elev(w), sx(w),
             sy(w);
         Rows ulo(w, kNoBound), uhi(w, -kNoBound), vlo(w, kNoBound), vhi(w, -kNoBound), shi(w);
@@ -121,8 +123,8 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
                                 elev.mid(),
                                 metric ? sx.mid() : nullptr,
                                 metric ? sy.mid() : nullptr};
-        update_row(in, UpdateRowParams{rx, ry, w, budget, g}, nh.mid(), nhu.mid(), nhv.mid(), 1,
-                   w - 1);
+        update_row(in, UpdateRowParams{rx, ry, w, budget, g, h_thin}, nh.mid(), nhu.mid(),
+                   nhv.mid(), 1, w - 1);
         const double* factor_r = factor_ref.v.data();
         const auto donor = [&](const std::vector<double>& fh, int k, int off) {
             return fh[k] == 0.0 ? 1.0 : factor_r[fh[k] > 0.0 ? k - off : k];
@@ -156,6 +158,10 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
                                              ry * (fyv.v[k + w] * fn - fyv.v[k] * fs));
                 if (hn <= 0.0) {
                     ++emptied;
+                    return;
+                }
+                if (hn < h_thin) {
+                    ++thin;
                     return;
                 }
                 const double inv = 1.0 / hn;  // one division for both quotients
@@ -210,6 +216,7 @@ TEST(UpdateRows, DonorFactorsAndUpdateAreBitwiseTheScalarLoops) {
     EXPECT_GT(capped, 20);
     EXPECT_GT(block_only, 50);
     EXPECT_GT(no_wet_around, 20);
+    EXPECT_GT(thin, 20);
 }
 
 TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {

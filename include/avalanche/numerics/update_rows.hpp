@@ -3,11 +3,10 @@
 // the vector units like the face kernels (face_flux_rows.hpp): the donor factors of
 // the positivity-preserving flux scaling, and the conservative update with the
 // invariant-domain clamp and the energy cap. Each is the scalar loop body with its
-// branches turned into selections. A velocity outside the cell's own invariant bounds,
-// which needs the bounds of the eight neighbours, is finished by a second vector pass
-// over the blocks of 16 cells that hold one; the rare cases (a speed the block's bound
-// scales, the energy cap; a cell the step would empty, for the donor factors) by the
-// scalar code afterwards. Results are bitwise those of the scalar loops
+// branches turned into selections; the rare cases (a velocity outside the cell's own
+// invariant bounds, which needs the eight neighbours, or over the energy cap; a cell
+// the step would empty, for the donor factors) are finished by the scalar code
+// afterwards. Results are bitwise those of the scalar loops
 // (tests/regression/test_update_rows.cpp).
 //
 // All pointers address column 0 of the row; the row above is at +stride, the one
@@ -46,10 +45,16 @@ struct UpdateRowParams {
     std::ptrdiff_t stride;  // row stride of every array
     double energy_budget;   // per unit mass; the cap speed^2 is 2 (budget - g z)
     double gravity;
+    // The thin-layer depth: a cell left thinner has its velocity set by the thin-layer
+    // rule after the advection (Stepper::thin_layer_velocities), whatever the update
+    // gives it, so the update gives it none (zero momentum) and spends nothing on its
+    // bounds. 0 keeps every cell's bounds.
+    double h_thin = 0.0;
 };
 
 // U -= rx dF + ry dG with the donor-scaled fluxes, then the velocity clamps and the
-// energy cap, for cells i0 .. i1 - 1; writes the updated (h, hu, hv). In place if
+// energy cap, for cells i0 .. i1 - 1; writes the updated (h, hu, hv), with zero
+// momentum where the new depth is below p.h_thin. In place if
 // asked (h_new == in.h, hu_new == in.hu, hv_new == in.hv): a cell's update reads no
 // other cell's state.
 void update_row(const UpdateRowInput& in, const UpdateRowParams& p, double* h_new, double* hu_new,
