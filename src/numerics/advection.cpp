@@ -417,10 +417,10 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     // thread's next strip reads none of them (it reads the stage rows it is handed), so
     // they are updated in place (a cell's update reads only its own state), unless
     // another thread's strip reads them (advect()): then into the strip's out rows,
-    // which step 7 moves on. Each face is
-    // scaled by its donor's factor where it is used, so both cells of a face compute the
-    // same product (x * 1 == x exactly for the unscaled faces). A zero mass flux has no
-    // donor: its momentum (the pressure of a wall face) passes unscaled.
+    // which step 7 moves on. Each face is scaled by its donor's factor where it is used,
+    // so both cells of a face compute the same product (x * 1 == x exactly for the
+    // unscaled faces). A zero mass flux has no donor: its momentum (the pressure of a
+    // wall face) passes unscaled.
     const bool metric = terrain_.has_metric;
     const UpdateRowParams up{rx, ry, st, energy_budget_, numerics_.gravity, h_min_};
     for (int r = J; r < Je; ++r) {

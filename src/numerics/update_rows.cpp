@@ -100,8 +100,8 @@ void update_cell(const UpdateRowInput& in, const UpdateRowParams& p, bool metric
 // The common case of every cell (the velocity within the cell's own bounds and under
 // the energy cap) with selections; the other cells are marked for update_cell: their
 // depth is stored negated (a NaN depth stays NaN) and their momentum as it was before
-// the bounds. Returns the number of cells marked, so that the caller
-// can skip its search for them when there is none (the common case).
+// the bounds. Returns the number of cells marked, so that the caller can skip its
+// search for them when there is none (the common case).
 // The update may be in place (h_new == in.h, ...): each cell reads only its own state
 // before it writes it, so these pointers are not restrict; omp simd vectorises anyway.
 template <bool Metric>

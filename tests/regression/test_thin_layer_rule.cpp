@@ -3,8 +3,9 @@
 // than h_min with no neighbour at least h_min thick has no momentum; one with such a
 // neighbour moves in the direction of its deepest such neighbour, at most as fast (the
 // DEM frame keeps the neighbour's along-surface speed, and the cell's energy cap may
-// lower it), and moves if the neighbour does, unless its energy cap stops it. A flow on a rough valley, on one thread and on two, after enough steps for
-// fronts and films of both kinds.
+// lower it), and moves if the neighbour does, unless its energy cap stops it. A flow on
+// a rough valley, on one thread and on two, after enough steps for fronts and films of
+// both kinds.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -61,7 +62,8 @@ TEST(ThinLayerRule, ThinCellsStopOrMoveWithTheirDeepestWetNeighbour) {
                 // Moving with a moving neighbour, unless its energy cap stops it. (The
                 // update leaves such a cell zero momentum for the rule to set: a cell
                 // the rule missed would stand still here.)
-                const double cap2 = 2.0 * (stepper.energy_budget() - 9.81 * t.elevation(i, j));
+                const double cap2 =
+                    2.0 * (stepper.energy_budget() - NumericsParams{}.gravity * t.elevation(i, j));
                 if (speed == 0.0) {
                     bad += cap2 > 0.0;
                     continue;

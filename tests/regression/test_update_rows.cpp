@@ -6,7 +6,9 @@
 // the scalar cap_speed of energy_cap.hpp, which they called then). Rows
 // mix empty, emptied, thin and wet cells, velocities inside and outside their own
 // invariant bounds, cells with no wet neighbour, speeds over the own and the 3 x 3
-// speed bound, and cells over the energy cap. One change on purpose since (2026-12-02):
+// speed bound, and cells over the energy cap; some trials give the update a thin-layer
+// depth, below which a cell gets zero momentum (2026-12-04). One change on purpose
+// since (2026-12-02):
 // a cell's two velocity quotients share one reciprocal, hu * (1 / h) and hv * (1 / h),
 // in the kernels and in these references alike.
 #include <gtest/gtest.h>

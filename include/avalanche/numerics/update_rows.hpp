@@ -54,9 +54,8 @@ struct UpdateRowParams {
 
 // U -= rx dF + ry dG with the donor-scaled fluxes, then the velocity clamps and the
 // energy cap, for cells i0 .. i1 - 1; writes the updated (h, hu, hv), with zero
-// momentum where the new depth is below p.h_thin. In place if
-// asked (h_new == in.h, hu_new == in.hu, hv_new == in.hv): a cell's update reads no
-// other cell's state.
+// momentum where the new depth is below p.h_thin. In place if asked (h_new == in.h,
+// hu_new == in.hu, hv_new == in.hv): a cell's update reads no other cell's state.
 void update_row(const UpdateRowInput& in, const UpdateRowParams& p, double* h_new, double* hu_new,
                 double* hv_new, int i0, int i1) noexcept;
 
