@@ -63,4 +63,14 @@ bool outputs_complete(const std::string& scenario_dir, const std::string& config
     }
 }
 
+std::string recorded_scene_fingerprint(const std::string& scenario_dir) {
+    try {
+        std::ifstream in(std::filesystem::path(scenario_dir) / "summary.json");
+        if (!in) return "";
+        return nlohmann::json::parse(in).value("scene_fingerprint", "");
+    } catch (const nlohmann::json::exception&) {
+        return "";  // unreadable: recompute rather than trust it
+    }
+}
+
 }  // namespace avalanche

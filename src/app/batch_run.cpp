@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "avalanche/app/batch_manifest.hpp"
@@ -83,39 +84,57 @@ nlohmann::json parameters_json(const BatchCase& c) {
     return p;
 }
 
-// Marks what a previous batch completed with the same configuration and from the same
-// sources; logs the rest.
-Manifest decide_skips(std::vector<Planned>& planned, const Manifest& old) {
+const std::shared_ptr<const PreparedScene>& scene_of(const Planned& p, SceneCache& scenes) {
+    auto& scene = scenes[scene_key(p.batch_case)];
+    if (!scene) scene = std::make_shared<const PreparedScene>(prepare_scene(p.scenario));
+    return scene;
+}
+
+// Marks what a previous batch completed with the same configuration, from the same
+// sources and on the same inputs; logs the rest. A DEM or release edited in place keeps
+// its path and thereby the configuration hash, so the inputs are compared as prepared
+// (the scene fingerprint its summary.json records): the scenes of the scenarios that
+// pass every other test are prepared here, and kept in `scenes` for the runs.
+Manifest decide_skips(std::vector<Planned>& planned, const Manifest& old, SceneCache& scenes) {
     Manifest manifest;
     const std::string sources = source_hash();
+    std::map<std::string, std::string> fingerprints;  // the scenes' now, by scene_key
     for (auto& p : planned) {
         ManifestEntry e{parameters_json(p.batch_case), p.hash, sources, false, ""};
         const auto it = old.find(p.batch_case.id);
-        const char* reason = "new";
+        std::string reason = "new", fingerprint;
         if (it != old.end()) {
             const bool same = it->second.config_hash == p.hash;
             const bool same_sources = it->second.source_hash == sources;
-            p.skip = same && same_sources && it->second.complete &&
-                     outputs_complete(p.dir, p.hash, sources);
+            const bool complete = same && same_sources && it->second.complete &&
+                                  outputs_complete(p.dir, p.hash, sources);
             reason = !same           ? "configuration changed"
                      : !same_sources ? "computed by a program built from other sources"
                                      : "outputs incomplete";
+            const std::string recorded = complete ? recorded_scene_fingerprint(p.dir) : "";
+            if (complete && recorded.empty())
+                reason = "its summary records no fingerprint of its inputs";
+            if (!recorded.empty()) {
+                std::string& now = fingerprints[scene_key(p.batch_case)];
+                if (now.empty()) {
+                    const auto& scene = scene_of(p, scenes);
+                    now = scene_fingerprint_of(*scene, scene->initial);
+                }
+                fingerprint = now;
+                p.skip = recorded == now;
+                reason = "inputs changed: the terrain, release or monitoring points prepare "
+                         "to another scene than the one it was computed on";
+            }
         }
         e.complete = p.skip;
         if (p.skip)
-            spdlog::info("skipping {}: complete, configuration {} and sources {} unchanged",
-                         p.batch_case.id, p.hash, sources);
+            spdlog::info("skipping {}: complete, configuration {}, sources {} and inputs {} unchanged",
+                         p.batch_case.id, p.hash, sources, fingerprint);
         else
             spdlog::info("computing {} ({})", p.batch_case.id, reason);
         manifest[p.batch_case.id] = e;
     }
     return manifest;
-}
-
-const std::shared_ptr<const PreparedScene>& scene_of(const Planned& p, SceneCache& scenes) {
-    auto& scene = scenes[scene_key(p.batch_case)];
-    if (!scene) scene = std::make_shared<const PreparedScene>(prepare_scene(p.scenario));
-    return scene;
 }
 
 // One preparation per distinct scene (reusing those prepared already, e.g. for --observed).
@@ -276,8 +295,8 @@ int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const Glob
             observation = load_observation(args.observed, *scene_of(planned.front(), scenes),
                                            base.output.h_threshold);
         prepare_batch_folder(args.out, args.overwrite);
-        manifest =
-            decide_skips(planned, args.overwrite ? Manifest{} : read_manifest(manifest_path));
+        manifest = decide_skips(planned, args.overwrite ? Manifest{} : read_manifest(manifest_path),
+                                scenes);
         write_manifest(manifest_path, manifest, batch);
     });
     std::string skips;
@@ -297,6 +316,11 @@ int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const Glob
                      pending.size(), planned.size() - pending.size());
     if (ranks.size() > 1)
         spdlog::info("MPI rank {} of {}: {} scenario(s)", ranks.rank(), ranks.size(), mine.size());
+    // Scenes prepared to compare the inputs of scenarios that are skipped, or that another
+    // rank runs, are not kept through the runs.
+    std::set<std::string> needed;
+    for (const auto* p : mine) needed.insert(scene_key(p->batch_case));
+    std::erase_if(scenes, [&](const auto& kv) { return !needed.count(kv.first); });
     ranks.all_or_none([&] { attach_scenes(mine, scenes); });
     InterruptGuard interrupt;
     std::vector<Failure> failures = run_pending(mine, manifest, manifest_path, batch, args.parallel,

@@ -123,7 +123,7 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
         config,
         hash,
         std::filesystem::current_path().string(),
-        scene_fingerprint(scene.grid, scene.terrain, initial, scene.outside_data, scene.probes),
+        scene_fingerprint_of(scene, initial),
         options.checkpoint_interval,
         openmp_threads(),
         software_version(),
@@ -263,6 +263,7 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
     js["products"].push_back("report.html");
     js["crs_wkt"] = scene.crs_wkt;
     js["inputs"] = scene.input_files;
+    js["scene_fingerprint"] = checkpoint_info.scene_fingerprint;
     write_report_html(options.out_dir, products, js);  // from the same numbers as summary.json
     phases.lap("report");
     js["performance"]["phases_s"] = phases.to_json();
@@ -274,6 +275,10 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
 }
 
 }  // namespace
+
+std::string scene_fingerprint_of(const PreparedScene& scene, const State& initial) {
+    return scene_fingerprint(scene.grid, scene.terrain, initial, scene.outside_data, scene.probes);
+}
 
 RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const RunOptions& options) {
     return execute(scene, scene.initial, s, options);

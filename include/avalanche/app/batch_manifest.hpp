@@ -3,7 +3,9 @@
 // hash of its effective configuration, the source hash of the program that computed it
 // and whether its outputs are complete. A restarted batch skips a scenario only when the
 // manifest AND its summary.json agree that it is complete with the same configuration
-// hash and the same source hash (the version number is the same for every commit).
+// hash and the same source hash (the version number is the same for every commit), and
+// its inputs still prepare to the scene fingerprint its summary.json records (a DEM or
+// a release file edited in place keeps its path, so the configuration hash cannot tell).
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -32,5 +34,10 @@ void write_manifest(const std::string& path, const Manifest& manifest, const nlo
 // exists), carries both hashes and was not interrupted.
 bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash,
                       const std::string& source_hash);
+
+// The scene fingerprint (prepared_scene.hpp) the summary.json of `scenario_dir` records:
+// what its inputs prepared to. "" when the summary records none (written before
+// 2026-12-04) or cannot be read.
+std::string recorded_scene_fingerprint(const std::string& scenario_dir);
 
 }  // namespace avalanche

@@ -75,6 +75,12 @@ RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const Ru
 // instead of being copied, and is empty afterwards; the rest of the scene is kept.
 RunOutcome execute_scene(PreparedScene&& scene, const Scenario& s, const RunOptions& options);
 
+// What identifies the inputs of a run of `scene` started from `initial`: the scene
+// fingerprint of its grid, terrain, initial state, sinks and monitoring cells
+// (checkpoint_file.hpp). summary.json and the checkpoints record it; --resume and a
+// resumed batch recompute a run whose inputs now prepare to another value.
+std::string scene_fingerprint_of(const PreparedScene& scene, const State& initial);
+
 // Output folder rules: refuses (OutputError, exit 4) a folder that already holds
 // summary.json or results.h5 unless `overwrite`; creates a missing folder; checks that
 // it is writable before any work is done.
