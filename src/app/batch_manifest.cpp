@@ -22,6 +22,7 @@ Manifest read_manifest(const std::string& path) {
             e.source_hash = s.value("source_hash", "");
             e.complete = s.at("complete").get<bool>();
             e.error = s.value("error", "");
+            e.config_hash_without_paths = s.value("config_hash_without_paths", "");
             m[s.at("id").get<std::string>()] = e;
         }
     } catch (const nlohmann::json::exception& e) {
@@ -38,6 +39,7 @@ void write_manifest(const std::string& path, const Manifest& manifest,
         nlohmann::json s = {{"id", id},
                             {"parameters", e.parameters},
                             {"config_hash", e.config_hash},
+                            {"config_hash_without_paths", e.config_hash_without_paths},
                             {"source_hash", e.source_hash},
                             {"complete", e.complete}};
         if (!e.error.empty()) s["error"] = e.error;
@@ -47,7 +49,7 @@ void write_manifest(const std::string& path, const Manifest& manifest,
     write_file_atomically(path, js.dump(2) + "\n");
 }
 
-bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash,
+bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash_without_paths,
                       const std::string& source_hash) {
     const auto summary = std::filesystem::path(scenario_dir) / "summary.json";
     std::error_code ec;
@@ -55,7 +57,7 @@ bool outputs_complete(const std::string& scenario_dir, const std::string& config
     try {
         std::ifstream in(summary);
         const auto js = nlohmann::json::parse(in);
-        return js.at("config_hash").get<std::string>() == config_hash &&
+        return js.value("config_hash_without_paths", "") == config_hash_without_paths &&
                js.value("source_hash", "") == source_hash &&
                js.at("end_reason").get<std::string>() != "interrupted";
     } catch (const nlohmann::json::exception&) {

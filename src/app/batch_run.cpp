@@ -45,6 +45,7 @@ struct Planned {
     std::string hash, dir;
     bool skip = false;
     std::shared_ptr<const PreparedScene> scene;
+    std::string hash_without_paths;  // what a resumed batch compares (decide_skips)
 };
 
 // Prepared scenes by scene_key: material and numerics cases share the base scene.
@@ -91,24 +92,28 @@ const std::shared_ptr<const PreparedScene>& scene_of(const Planned& p, SceneCach
 }
 
 // Marks what a previous batch completed with the same configuration, from the same
-// sources and on the same inputs; logs the rest. A DEM or release edited in place keeps
-// its path and thereby the configuration hash, so the inputs are compared as prepared
-// (the scene fingerprint its summary.json records): the scenes of the scenarios that
-// pass every other test are prepared here, and kept in `scenes` for the runs.
+// sources and on the same inputs; logs the rest. The configurations are compared without
+// their input paths (which depend on the working folder the batch started in), and the
+// inputs as prepared (the scene fingerprint its summary.json records; a DEM edited in
+// place keeps its path): the scenes of the scenarios that pass every other test are
+// prepared here, and kept in `scenes` for the runs.
 Manifest decide_skips(std::vector<Planned>& planned, const Manifest& old, SceneCache& scenes) {
     Manifest manifest;
     const std::string sources = source_hash();
     std::map<std::string, std::string> fingerprints;  // the scenes' now, by scene_key
     for (auto& p : planned) {
-        ManifestEntry e{parameters_json(p.batch_case), p.hash, sources, false, ""};
+        ManifestEntry e{parameters_json(p.batch_case), p.hash, sources, false, "",
+                        p.hash_without_paths};
         const auto it = old.find(p.batch_case.id);
         std::string reason = "new", fingerprint;
         if (it != old.end()) {
-            const bool same = it->second.config_hash == p.hash;
+            const bool recorded_hash = !it->second.config_hash_without_paths.empty();
+            const bool same = it->second.config_hash_without_paths == p.hash_without_paths;
             const bool same_sources = it->second.source_hash == sources;
             const bool complete = same && same_sources && it->second.complete &&
-                                  outputs_complete(p.dir, p.hash, sources);
-            reason = !same           ? "configuration changed"
+                                  outputs_complete(p.dir, p.hash_without_paths, sources);
+            reason = !recorded_hash  ? "computed before the batch recorded its inputs"
+                     : !same         ? "configuration changed"
                      : !same_sources ? "computed by a program built from other sources"
                                      : "outputs incomplete";
             const std::string recorded = complete ? recorded_scene_fingerprint(p.dir) : "";
@@ -129,7 +134,7 @@ Manifest decide_skips(std::vector<Planned>& planned, const Manifest& old, SceneC
         e.complete = p.skip;
         if (p.skip)
             spdlog::info("skipping {}: complete, configuration {}, sources {} and inputs {} unchanged",
-                         p.batch_case.id, p.hash, sources, fingerprint);
+                         p.batch_case.id, p.hash_without_paths, sources, fingerprint);
         else
             spdlog::info("computing {} ({})", p.batch_case.id, reason);
         manifest[p.batch_case.id] = e;
@@ -272,7 +277,9 @@ int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const Glob
             Planned p{c,     scenario_for_case(base, c),
                       "",    (fs::path(args.out) / c.id).string(),
                       false, nullptr};
-            p.hash = config_hash(effective_config(p.scenario));
+            const nlohmann::json config = effective_config(p.scenario);
+            p.hash = config_hash(config);
+            p.hash_without_paths = config_hash_without_paths(config);
             planned.push_back(std::move(p));
         }
     });

@@ -264,6 +264,7 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
     js["crs_wkt"] = scene.crs_wkt;
     js["inputs"] = scene.input_files;
     js["scene_fingerprint"] = checkpoint_info.scene_fingerprint;
+    js["config_hash_without_paths"] = config_hash_without_paths(config);
     write_report_html(options.out_dir, products, js);  // from the same numbers as summary.json
     phases.lap("report");
     js["performance"]["phases_s"] = phases.to_json();

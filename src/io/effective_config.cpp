@@ -107,6 +107,24 @@ std::string config_hash(const json& config) {
     return buf;
 }
 
+std::string config_hash_without_paths(json config) {
+    // Each path becomes "" (a list of DEM tiles keeps its length).
+    const auto blank = [&](const char* section, const char* key) {
+        if (!config.contains(section) || !config[section].is_object() || !config[section].contains(key))
+            return;
+        nlohmann::json& v = config[section][key];
+        if (v.is_array())
+            for (auto& path : v) path = "";
+        else if (v.is_string())
+            v = "";
+    };
+    blank("terrain", "dem");
+    blank("release", "polygons");
+    blank("release", "raster");
+    blank("points", "file");
+    return config_hash(config);
+}
+
 std::string software_version() { return AVALANCHE_VERSION; }
 
 std::string source_hash() { return AVALANCHE_SOURCE_HASH; }

@@ -1,7 +1,8 @@
-// A resumed batch and input files edited in place: the DEM or the release polygons
-// replaced under the same path leave the configuration (and its hash) as it was, so
-// what tells the scenarios computed on the old inputs from current ones is the scene
-// fingerprint their summary.json records (docs/batch.md, "Resuming").
+// A resumed batch and its inputs (docs/batch.md, "Resuming"): the DEM or the release
+// polygons replaced under the same path leave the configuration (and its hashes) as it
+// was, so what tells the scenarios computed on the old inputs from current ones is the
+// scene fingerprint their summary.json records; and the same inputs named from another
+// folder, or moved, change only the paths, which the comparison leaves out.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -94,6 +95,65 @@ TEST(BatchInputs, ResumeRecomputesScenariosWhoseInputFilesChangedInPlace) {
     EXPECT_NE(r.err.find("computing delta=30 (its summary records no fingerprint"), std::string::npos)
         << r.err;
     EXPECT_EQ(fingerprint_of(s30), fingerprint_of(s25));
+}
+
+// The other side of the same rule: the configuration is compared without its input
+// paths, which name the same files differently from another working folder, or after
+// the inputs moved; their contents are compared through the fingerprint.
+TEST(BatchInputs, ResumeSkipsScenariosWhoseInputsAreNamedFromAnotherFolderOrMoved) {
+    test::ScratchDir dir("batch-paths");
+    fs::create_directories(dir.file("project/inputs"));
+    ASSERT_TRUE(test::gdal_translate(test::avaKot("avaKot_dem.tif"), dir.file("project/inputs/dem.tif"), {}));
+    ASSERT_TRUE(test::ogr2ogr(dir.file("project/inputs/release.gpkg"), test::avaKot("avaKot_release.gpkg"), {}));
+    const auto scenario = [&](const std::string& folder) {
+        dir.write("project/base.toml", "[terrain]\ntype = \"dem\"\ndem = \"" + folder +
+                                           "/dem.tif\"\n[release]\npolygons = \"" + folder +
+                                           "/release.gpkg\"\nthickness_field = \"thickness\"\n"
+                                           "[numerics]\ncell_size = 40.0\nt_end = 10.0\n"
+                                           "output_interval = 5.0\n");
+    };
+    scenario("inputs");
+    const std::string out = dir.file("project/out");
+    const std::string s25 = out + "/delta=25/summary.json";
+    // From the scratch folder: the inputs are named project/inputs/...
+    const auto batch = [&] {
+        return test::run_command(dir, "cd '" + dir.file("") + "' && '" + AVALANCHE_BINARY +
+                                          "' batch --scenario project/base.toml --sweep delta=25,30 "
+                                          "--out project/out");
+    };
+    auto r = batch();
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto first = test::read_json(s25);
+    const auto kept = fs::last_write_time(s25);
+    const std::string hash = first.value("config_hash_without_paths", "");
+    EXPECT_EQ(hash.size(), 16u);
+    for (const auto& e : test::read_json(out + "/manifest.json")["scenarios"])
+        if (e["id"] == "delta=25") EXPECT_EQ(e.value("config_hash_without_paths", ""), hash);
+
+    // The same batch from the project folder (the inputs named inputs/..., another
+    // configuration hash): skipped.
+    r = test::run_command(dir, "cd '" + dir.file("project") + "' && '" + AVALANCHE_BINARY +
+                                   "' batch --scenario base.toml --sweep delta=25,30 --out out");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(fs::last_write_time(s25), kept);
+    EXPECT_NE(r.err.find("skipping delta=25"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("skipping delta=30"), std::string::npos) << r.err;
+
+    // The inputs moved to another folder, unchanged, and the scenario file follows them.
+    fs::rename(dir.file("project/inputs"), dir.file("project/terrain"));
+    scenario("terrain");
+    r = batch();
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(fs::last_write_time(s25), kept);
+    EXPECT_NE(r.err.find("skipping delta=25"), std::string::npos) << r.err;
+
+    // A parameter changed: recomputed.
+    dir.write("project/base.toml", test::read_text(dir.file("project/base.toml")) +
+                                       "[output]\nh_threshold = 0.02\n");
+    r = batch();
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("computing delta=25 (configuration changed)"), std::string::npos) << r.err;
+    EXPECT_NE(test::read_json(s25).value("config_hash_without_paths", ""), hash);
 }
 
 }  // namespace

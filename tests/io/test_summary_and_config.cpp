@@ -59,6 +59,48 @@ TEST(EffectiveConfig, HoldsEveryParameterAndItsHashFollowsThem) {
     EXPECT_EQ(config_hash(nlohmann::json("")), "07cc7607b4949e25");
 }
 
+// A resumed batch compares this hash (docs/batch.md): the input paths, and nothing else,
+// may differ.
+TEST(EffectiveConfig, HashWithoutPathsIgnoresTheInputPathsOnly) {
+    Scenario s;
+    s.terrain = DemTerrainSpec{{"inputs/dem.tif"}, "EPSG:31287"};
+    s.release = PolygonReleaseSpec{"inputs/release.gpkg", std::nullopt, "thickness", std::nullopt};
+    s.points = PointsSpec{"inputs/points.csv", ""};
+    Scenario moved = s;
+    moved.terrain = DemTerrainSpec{{"/elsewhere/dem.tif"}, "EPSG:31287"};
+    moved.release = PolygonReleaseSpec{"/elsewhere/release.gpkg", std::nullopt, "thickness", std::nullopt};
+    moved.points = PointsSpec{"/elsewhere/points.csv", ""};
+    const auto config = effective_config(s), config_moved = effective_config(moved);
+    EXPECT_NE(config_hash(config), config_hash(config_moved));
+    EXPECT_EQ(config_hash_without_paths(config), config_hash_without_paths(config_moved));
+    EXPECT_NE(config_hash_without_paths(config), config_hash(config));
+
+    Scenario raster = s, raster_moved = s;
+    raster.release = RasterReleaseSpec{"inputs/release.tif"};
+    raster_moved.release = RasterReleaseSpec{"release.tif"};
+    EXPECT_EQ(config_hash_without_paths(effective_config(raster)),
+              config_hash_without_paths(effective_config(raster_moved)));
+    EXPECT_NE(config_hash_without_paths(effective_config(raster)), config_hash_without_paths(config));
+
+    // Everything else still counts, the names of the CRS and the thickness field included.
+    Scenario other = s;
+    other.material.delta_deg += 1e-9;
+    EXPECT_NE(config_hash_without_paths(effective_config(other)), config_hash_without_paths(config));
+    other = s;
+    std::get<DemTerrainSpec>(other.terrain).crs = "EPSG:32632";
+    EXPECT_NE(config_hash_without_paths(effective_config(other)), config_hash_without_paths(config));
+    other = s;
+    std::get<PolygonReleaseSpec>(other.release).thickness_field = "depth";
+    EXPECT_NE(config_hash_without_paths(effective_config(other)), config_hash_without_paths(config));
+    other = s;
+    other.points->crs = "EPSG:4326";
+    EXPECT_NE(config_hash_without_paths(effective_config(other)), config_hash_without_paths(config));
+    // Two DEM tiles are another configuration than one, whatever their names.
+    other = s;
+    std::get<DemTerrainSpec>(other.terrain).dem_paths.push_back("inputs/dem2.tif");
+    EXPECT_NE(config_hash_without_paths(effective_config(other)), config_hash_without_paths(config));
+}
+
 TEST(Summary, HasEveryDocumentedKeyFromTheRunStatistics) {
     SummaryInputs in;
     in.stats.end_reason = EndReason::stopped_kinetic_energy;

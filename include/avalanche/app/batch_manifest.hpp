@@ -1,11 +1,12 @@
 #pragma once
 // DIR/manifest.json of a batch (docs/batch.md): per scenario its id, parameters, the
-// hash of its effective configuration, the source hash of the program that computed it
-// and whether its outputs are complete. A restarted batch skips a scenario only when the
-// manifest AND its summary.json agree that it is complete with the same configuration
-// hash and the same source hash (the version number is the same for every commit), and
-// its inputs still prepare to the scene fingerprint its summary.json records (a DEM or
-// a release file edited in place keeps its path, so the configuration hash cannot tell).
+// hash of its effective configuration (with and without its input paths), the source
+// hash of the program that computed it and whether its outputs are complete. A restarted
+// batch skips a scenario only when the manifest AND its summary.json agree that it is
+// complete with the same configuration (its input paths aside: they depend on the
+// working folder) and the same source hash (the version number is the same for every
+// commit), and its inputs still prepare to the scene fingerprint its summary.json
+// records (the inputs' contents: a DEM edited in place keeps its path).
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -18,6 +19,9 @@ struct ManifestEntry {
     std::string source_hash;  // "" in manifests written before it was recorded
     bool complete = false;
     std::string error;  // why the last attempt failed, "" if it did not
+    // config_hash_without_paths (effective_config.hpp): what a resumed batch compares;
+    // "" in manifests written before 2026-12-04.
+    std::string config_hash_without_paths;
 };
 using Manifest = std::map<std::string, ManifestEntry>;  // by scenario id (sorted)
 
@@ -29,10 +33,11 @@ Manifest read_manifest(const std::string& path);
 // leaves the previous manifest. `batch` describes the batch (base scenario, sweeps).
 void write_manifest(const std::string& path, const Manifest& manifest, const nlohmann::json& batch);
 
-// Whether `scenario_dir` holds a finished run of configuration `config_hash` computed
-// from sources `source_hash`: its summary.json exists (written last, so every product
-// exists), carries both hashes and was not interrupted.
-bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash,
+// Whether `scenario_dir` holds a finished run of the configuration whose hash without
+// input paths is `config_hash_without_paths`, computed from sources `source_hash`: its
+// summary.json exists (written last, so every product exists), carries both hashes and
+// was not interrupted.
+bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash_without_paths,
                       const std::string& source_hash);
 
 // The scene fingerprint (prepared_scene.hpp) the summary.json of `scenario_dir` records:

@@ -17,6 +17,12 @@ nlohmann::json effective_config(const Scenario& s);
 // FNV-1a (64 bit) of the compact dump of `config`, as 16 hex digits.
 std::string config_hash(const nlohmann::json& config);
 
+// config_hash of `config` with its input paths (terrain.dem, release.polygons,
+// release.raster, points.file) blanked: the same for the same parameters however the
+// inputs are named (relative to another working folder, or moved). A resumed batch
+// compares it, and the inputs' contents through the scene fingerprint (docs/batch.md).
+std::string config_hash_without_paths(nlohmann::json config);
+
 // The software version written into outputs (the CMake project version).
 std::string software_version();
 
