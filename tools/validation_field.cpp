@@ -156,12 +156,20 @@ TwinRun twin_run(const std::string& scenario, const std::string& work_dir,
     expected["material"]["delta_deg"] = kTwinDelta;
     expected["numerics"]["cell_size"] = t.cell_size;
     const std::string summary_path = t.dir + "/summary.json";
-    if (std::filesystem::exists(summary_path)) {
+    // The inputs' contents the twin ran on, as the sweep's scene fingerprint it was paired
+    // with: the sweep's batch recomputes its scenarios when their inputs change (the
+    // half-cell twin's own fingerprint differs from the sweep's by its grid).
+    const std::string paired_path = t.dir + "/sweep_scene_fingerprint.txt";
+    const std::string sweep_fingerprint = sweep_summary.value("scene_fingerprint", "");
+    if (std::filesystem::exists(summary_path) && std::filesystem::exists(paired_path)) {
         const nlohmann::json j = read_json(summary_path);
-        // Reused only when computed from the same sources, as the batch does.
+        std::string paired;
+        std::ifstream(paired_path) >> paired;
+        // Reused only when computed from the same sources and inputs, as the batch does.
         if (j.value("complete", false) && j.at("parameters") == expected &&
             j.at("inputs") == sweep_summary.at("inputs") &&
-            j.value("source_hash", "") == source_hash()) {
+            j.value("source_hash", "") == source_hash() && !sweep_fingerprint.empty() &&
+            paired == sweep_fingerprint) {
             t.summary = j;
             t.reused = true;
             return t;
@@ -179,6 +187,7 @@ TwinRun twin_run(const std::string& scenario, const std::string& work_dir,
     t.cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     if (rc != 0) throw InputError(t.dir, "the twin run failed with exit code " + std::to_string(rc));
     t.summary = read_json(summary_path);
+    std::ofstream(paired_path) << sweep_fingerprint << "\n";
     return t;
 }
 
@@ -343,7 +352,8 @@ std::string field_section(const StudyOptions& o) {
        << fmt("%.0f", run_wall) << " s of wall time in all (the `wall` column, as "
        << "`comparison.csv` reports it, one thread on a machine shared with other jobs; a "
        << "rerun resumes the batch and only recomputes what changed: every run when the "
-       << "program's sources changed, as the batch compares their hash).\n\n"
+       << "program's sources or the inputs changed, as the batch compares the sources' hash and "
+       << "the prepared scene's fingerprint).\n\n"
        << "| delta (deg) | runout L (m) | travel angle (deg) | L/H | affected area (km^2) | max "
           "depth (m) | max speed (m/s) | deposit volume (10^6 m^3) | released (10^6 m^3) | "
           "left the DEM (10^6 m^3) | end | wall (s) |\n"
