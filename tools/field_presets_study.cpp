@@ -10,8 +10,9 @@
 //
 // Every run goes through `avalanche-hazard run` in-process, as a user runs it (one
 // thread); its products are read back with GDAL and its final state from results.h5.
-// Runs whose summary.json carries this program's source hash and configuration are
-// reused from the work folder, so a rerun after a change of the docs costs nothing.
+// Runs whose summary.json carries this program's source hash and configuration, and
+// whose input files still have the same bytes, are reused from the work folder, so a
+// rerun after a change of the docs costs nothing.
 // Usage: field_presets_study [--doc docs/performance.md] [--work ../field-presets-work]
 #include <hdf5.h>
 
@@ -39,6 +40,7 @@ using namespace avalanche;
 namespace {
 
 using study::fmt;
+using study::inputs_digest;
 using study::read_json;
 
 // One run of the study: its name in the table, the flags after the scenario, and what
@@ -61,7 +63,8 @@ struct Run {
 
 // Runs `avalanche-hazard run --scenario S FLAGS --threads 1 --out DIR`, or reuses DIR
 // when its summary says it is complete, from this program's sources, with the same
-// command flags.
+// command flags and input files of the same bytes (study_command.txt keeps the flags
+// and the inputs' digest).
 void run(Run& r, const std::string& scenario, const std::string& work) {
     r.dir = work + "/" + r.name;
     std::vector<std::string> cli = {"avalanche-hazard", "run", "--scenario", scenario};
@@ -74,10 +77,12 @@ void run(Run& r, const std::string& scenario, const std::string& work) {
     const std::string stamp = r.dir + "/study_command.txt";
     if (std::filesystem::exists(summary) && std::filesystem::exists(stamp)) {
         const nlohmann::json j = read_json(summary);
-        std::string was;
-        std::getline(std::ifstream(stamp), was);
+        std::string was, digest;
+        std::ifstream in(stamp);
+        std::getline(in, was);
+        std::getline(in, digest);
         if (j.value("complete", false) && j.value("source_hash", "") == source_hash() &&
-            was == line) {
+            was == line && j.contains("inputs") && digest == inputs_digest(j.at("inputs"))) {
             r.summary = j;
             r.reused = true;
             std::cerr << "reusing " << r.dir << "\n";
@@ -89,8 +94,8 @@ void run(Run& r, const std::string& scenario, const std::string& work) {
     const int rc = run_cli(cli);
     r.cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     if (rc != 0) throw InputError(r.dir, "the run failed with exit code " + std::to_string(rc));
-    std::ofstream(stamp) << line << "\n";
     r.summary = read_json(summary);
+    std::ofstream(stamp) << line << "\n" << inputs_digest(r.summary.at("inputs")) << "\n";
 }
 
 // Relative L1 distance of a map from the reference's, the reference averaged over the

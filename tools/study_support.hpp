@@ -1,7 +1,8 @@
 #pragma once
 // What the study tools share (verification_report, validation_study, pareto_study,
-// field_presets_study): number formatting for their Markdown, reading a run's JSON, and
-// replacing a generated block of a document.
+// field_presets_study): number formatting for their Markdown, reading a run's JSON,
+// replacing a generated block of a document, and the digest of a run's input files.
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -45,6 +46,29 @@ inline std::string read_text(const std::string& path) {
     std::stringstream ss;
     ss << std::ifstream(path).rdbuf();
     return ss.str();
+}
+
+// 16 hex digits of FNV-1a over the bytes of the files a run read (summary.json's
+// `inputs`, as named from the working folder), each preceded by its name; "missing" for
+// a file that cannot be read. A study reuses a run only while its inputs still hash the
+// same: a DEM edited in place keeps its name.
+inline std::string inputs_digest(const nlohmann::json& inputs) {
+    std::uint64_t h = 0xcbf29ce484222325ULL;
+    const auto add = [&](const std::string& bytes) {
+        for (const unsigned char c : bytes) {
+            h ^= c;
+            h *= 0x100000001b3ULL;
+        }
+    };
+    for (const auto& path : inputs) {
+        const std::string name = path.get<std::string>();
+        add(name);
+        std::ifstream in(name, std::ios::binary);
+        add(in ? read_text(name) : std::string("missing"));
+    }
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
 }
 
 }  // namespace avalanche::study
