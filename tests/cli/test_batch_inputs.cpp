@@ -127,8 +127,14 @@ TEST(BatchInputs, ResumeSkipsScenariosWhoseInputsAreNamedFromAnotherFolderOrMove
     const auto kept = fs::last_write_time(s25);
     const std::string hash = first.value("config_hash_without_paths", "");
     EXPECT_EQ(hash.size(), 16u);
-    for (const auto& e : test::read_json(out + "/manifest.json")["scenarios"])
-        if (e["id"] == "delta=25") EXPECT_EQ(e.value("config_hash_without_paths", ""), hash);
+    // The document must outlive the loop (a range-for over a member of a temporary reads
+    // freed memory).
+    const auto manifest = test::read_json(out + "/manifest.json");
+    for (const auto& e : manifest["scenarios"]) {
+        if (e["id"] == "delta=25") {
+            EXPECT_EQ(e.value("config_hash_without_paths", ""), hash);
+        }
+    }
 
     // The same batch from the project folder (the inputs named inputs/..., another
     // configuration hash): skipped.
