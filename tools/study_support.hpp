@@ -2,7 +2,6 @@
 // What the study tools share (verification_report, validation_study, pareto_study,
 // field_presets_study): number formatting for their Markdown, reading a run's JSON,
 // replacing a generated block of a document, and the digest of a run's input files.
-#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -10,6 +9,7 @@
 #include <string>
 
 #include "avalanche/core/error.hpp"
+#include "avalanche/io/sha256.hpp"
 
 namespace avalanche::study {
 
@@ -48,27 +48,23 @@ inline std::string read_text(const std::string& path) {
     return ss.str();
 }
 
-// 16 hex digits of FNV-1a over the bytes of the files a run read (summary.json's
-// `inputs`, as named from the working folder), each preceded by its name; "missing" for
-// a file that cannot be read. A study reuses a run only while its inputs still hash the
-// same: a DEM edited in place keeps its name.
+// 16 hex digits of the SHA-256 of the listing "name checksum" of the files a run read
+// (summary.json's `inputs`, as named from the working folder; each file's SHA-256 as the
+// run's report.html gives it, "unreadable" for one that cannot be read). A study reuses
+// a run only while its inputs still digest the same: a DEM edited in place keeps its name.
 inline std::string inputs_digest(const nlohmann::json& inputs) {
-    std::uint64_t h = 0xcbf29ce484222325ULL;
-    const auto add = [&](const std::string& bytes) {
-        for (const unsigned char c : bytes) {
-            h ^= c;
-            h *= 0x100000001b3ULL;
-        }
-    };
+    std::string listing;
     for (const auto& path : inputs) {
         const std::string name = path.get<std::string>();
-        add(name);
-        std::ifstream in(name, std::ios::binary);
-        add(in ? read_text(name) : std::string("missing"));
+        std::string checksum;
+        try {
+            checksum = sha256_file_hex(name);
+        } catch (const Error&) {
+            checksum = "unreadable";
+        }
+        listing += name + " " + checksum + "\n";
     }
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
+    return sha256_hex(listing).substr(0, 16);
 }
 
 }  // namespace avalanche::study

@@ -49,29 +49,22 @@ void write_manifest(const std::string& path, const Manifest& manifest,
     write_file_atomically(path, js.dump(2) + "\n");
 }
 
-bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash_without_paths,
-                      const std::string& source_hash) {
+std::optional<std::string> completed_run_fingerprint(const std::string& scenario_dir,
+                                                     const std::string& config_hash_without_paths,
+                                                     const std::string& source_hash) {
     const auto summary = std::filesystem::path(scenario_dir) / "summary.json";
     std::error_code ec;
-    if (!std::filesystem::exists(summary, ec)) return false;
+    if (!std::filesystem::exists(summary, ec)) return std::nullopt;
     try {
         std::ifstream in(summary);
         const auto js = nlohmann::json::parse(in);
-        return js.value("config_hash_without_paths", "") == config_hash_without_paths &&
-               js.value("source_hash", "") == source_hash &&
-               js.at("end_reason").get<std::string>() != "interrupted";
+        if (js.value("config_hash_without_paths", "") != config_hash_without_paths ||
+            js.value("source_hash", "") != source_hash ||
+            js.at("end_reason").get<std::string>() == "interrupted")
+            return std::nullopt;
+        return js.value("scene_fingerprint", "");
     } catch (const nlohmann::json::exception&) {
-        return false;  // unreadable: recompute rather than trust it
-    }
-}
-
-std::string recorded_scene_fingerprint(const std::string& scenario_dir) {
-    try {
-        std::ifstream in(std::filesystem::path(scenario_dir) / "summary.json");
-        if (!in) return "";
-        return nlohmann::json::parse(in).value("scene_fingerprint", "");
-    } catch (const nlohmann::json::exception&) {
-        return "";  // unreadable: recompute rather than trust it
+        return std::nullopt;  // unreadable: recompute rather than trust it
     }
 }
 

@@ -42,10 +42,11 @@ namespace fs = std::filesystem;
 struct Planned {
     BatchCase batch_case;
     Scenario scenario;
-    std::string hash, dir;
+    std::string hash;                // config_hash of its effective configuration
+    std::string hash_without_paths;  // the same without the input paths (decide_skips)
+    std::string dir;
     bool skip = false;
     std::shared_ptr<const PreparedScene> scene;
-    std::string hash_without_paths;  // what a resumed batch compares (decide_skips)
 };
 
 // Prepared scenes by scene_key: material and numerics cases share the base scene.
@@ -102,33 +103,34 @@ Manifest decide_skips(std::vector<Planned>& planned, const Manifest& old, SceneC
     const std::string sources = source_hash();
     std::map<std::string, std::string> fingerprints;  // the scenes' now, by scene_key
     for (auto& p : planned) {
-        ManifestEntry e{parameters_json(p.batch_case), p.hash, sources, false, "",
-                        p.hash_without_paths};
+        ManifestEntry e{parameters_json(p.batch_case), p.hash, p.hash_without_paths, sources,
+                        false, ""};
         const auto it = old.find(p.batch_case.id);
         std::string reason = "new", fingerprint;
         if (it != old.end()) {
             const bool recorded_hash = !it->second.config_hash_without_paths.empty();
             const bool same = it->second.config_hash_without_paths == p.hash_without_paths;
             const bool same_sources = it->second.source_hash == sources;
-            const bool complete = same && same_sources && it->second.complete &&
-                                  outputs_complete(p.dir, p.hash_without_paths, sources);
-            reason = !recorded_hash  ? "computed before the batch recorded its inputs"
-                     : !same         ? "configuration changed"
-                     : !same_sources ? "computed by a program built from other sources"
-                                     : "outputs incomplete";
-            const std::string recorded = complete ? recorded_scene_fingerprint(p.dir) : "";
-            if (complete && recorded.empty())
-                reason = "its summary records no fingerprint of its inputs";
-            if (!recorded.empty()) {
+            const std::optional<std::string> recorded =
+                same && same_sources && it->second.complete
+                    ? completed_run_fingerprint(p.dir, p.hash_without_paths, sources)
+                    : std::nullopt;
+            reason = !recorded_hash      ? "computed before the batch recorded its inputs"
+                     : !same             ? "configuration changed"
+                     : !same_sources     ? "computed by a program built from other sources"
+                     : !recorded         ? "outputs incomplete"
+                     : recorded->empty() ? "its summary records no fingerprint of its inputs"
+                                         : "inputs changed: the terrain, release or monitoring "
+                                           "points prepare to another scene than the one it was "
+                                           "computed on";
+            if (recorded && !recorded->empty()) {
                 std::string& now = fingerprints[scene_key(p.batch_case)];
                 if (now.empty()) {
                     const auto& scene = scene_of(p, scenes);
                     now = scene_fingerprint_of(*scene, scene->initial);
                 }
                 fingerprint = now;
-                p.skip = recorded == now;
-                reason = "inputs changed: the terrain, release or monitoring points prepare "
-                         "to another scene than the one it was computed on";
+                p.skip = *recorded == now;
             }
         }
         e.complete = p.skip;
@@ -274,13 +276,11 @@ int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const Glob
         cases = plan_cases(args);
         base = assemble_scenario(args.scenario, {});
         for (const auto& c : cases) {
-            Planned p{c,     scenario_for_case(base, c),
-                      "",    (fs::path(args.out) / c.id).string(),
-                      false, nullptr};
-            const nlohmann::json config = effective_config(p.scenario);
-            p.hash = config_hash(config);
-            p.hash_without_paths = config_hash_without_paths(config);
-            planned.push_back(std::move(p));
+            Scenario scenario = scenario_for_case(base, c);
+            const nlohmann::json config = effective_config(scenario);
+            planned.push_back(Planned{c, std::move(scenario), config_hash(config),
+                                      config_hash_without_paths(config),
+                                      (fs::path(args.out) / c.id).string(), false, nullptr});
         }
     });
 

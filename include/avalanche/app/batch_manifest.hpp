@@ -9,6 +9,7 @@
 // records (the inputs' contents: a DEM edited in place keeps its path).
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 namespace avalanche {
@@ -16,12 +17,12 @@ namespace avalanche {
 struct ManifestEntry {
     nlohmann::json parameters = nlohmann::json::object();  // {"delta_deg": 12.5, ...}
     std::string config_hash;
-    std::string source_hash;  // "" in manifests written before it was recorded
-    bool complete = false;
-    std::string error;  // why the last attempt failed, "" if it did not
     // config_hash_without_paths (effective_config.hpp): what a resumed batch compares;
     // "" in manifests written before 2026-12-04.
     std::string config_hash_without_paths;
+    std::string source_hash;  // "" in manifests written before it was recorded
+    bool complete = false;
+    std::string error;  // why the last attempt failed, "" if it did not
 };
 using Manifest = std::map<std::string, ManifestEntry>;  // by scenario id (sorted)
 
@@ -33,16 +34,14 @@ Manifest read_manifest(const std::string& path);
 // leaves the previous manifest. `batch` describes the batch (base scenario, sweeps).
 void write_manifest(const std::string& path, const Manifest& manifest, const nlohmann::json& batch);
 
-// Whether `scenario_dir` holds a finished run of the configuration whose hash without
-// input paths is `config_hash_without_paths`, computed from sources `source_hash`: its
+// The scene fingerprint (prepared_scene.hpp) recorded by the finished run in
+// `scenario_dir` of the configuration whose hash without input paths is
+// `config_hash_without_paths`, computed from sources `source_hash`: nullopt unless its
 // summary.json exists (written last, so every product exists), carries both hashes and
-// was not interrupted.
-bool outputs_complete(const std::string& scenario_dir, const std::string& config_hash_without_paths,
-                      const std::string& source_hash);
-
-// The scene fingerprint (prepared_scene.hpp) the summary.json of `scenario_dir` records:
-// what its inputs prepared to. "" when the summary records none (written before
-// 2026-12-04) or cannot be read.
-std::string recorded_scene_fingerprint(const std::string& scenario_dir);
+// was not interrupted; "" when that summary records no fingerprint (written before
+// 2026-12-04).
+std::optional<std::string> completed_run_fingerprint(const std::string& scenario_dir,
+                                                     const std::string& config_hash_without_paths,
+                                                     const std::string& source_hash);
 
 }  // namespace avalanche
