@@ -137,6 +137,16 @@ std::string ranking_section(const std::vector<const BatchResult*>& rows,
     }
     return md.str();
 }
+// The codes of a scenario's caveats (run_caveats.hpp), ';'-separated; empty without any.
+std::string caveat_codes(const nlohmann::json& summary) {
+    std::string codes;
+    if (!summary.contains("caveats")) return codes;
+    for (const auto& c : summary.at("caveats")) {
+        if (!codes.empty()) codes += ';';
+        codes += c.at("code").get<std::string>();
+    }
+    return codes;
+}
 
 }  // namespace
 
@@ -164,7 +174,7 @@ std::vector<std::string> write_comparison(const std::string& dir,
     csv << "id";
     for (const auto* p : params) csv << "," << p->column;
     for (const auto& [column, key] : kRunoutColumns) csv << "," << column;
-    csv << ",end_reason";
+    csv << ",end_reason,caveats";
     for (const auto& name : points) csv << "," << csv_cell("arrival_s_" + name);
     const bool calibrated = !observed.empty();
     if (calibrated) csv << ",jaccard,runout_error_m,fit_score,fit_rank";
@@ -175,13 +185,13 @@ std::vector<std::string> write_comparison(const std::string& dir,
         if (r->summary) {
             const auto& runout = r->summary->at("runout");
             for (const auto& [column, key] : kRunoutColumns) csv << "," << cell(runout.at(key));
-            csv << "," << cell(r->summary->at("end_reason"));
+            csv << "," << cell(r->summary->at("end_reason")) << "," << caveat_codes(*r->summary);
             for (const auto& name : points) csv << "," << cell(arrival_at(*r->summary, name));
             if (calibrated) csv << fit_cells(r->fit);
             csv << "," << cell(r->summary->at("wall_s")) << "\n";
         } else {
             for (std::size_t k = 0; k < std::size(kRunoutColumns); ++k) csv << ",";
-            csv << ",failed" << std::string(points.size(), ',');
+            csv << ",failed," << std::string(points.size(), ',');
             if (calibrated) csv << ",,,,";
             csv << ",\n";
         }
@@ -226,11 +236,14 @@ std::vector<std::string> write_comparison(const std::string& dir,
         const auto& ro = r->summary->at("runout");
         char buf[160];
         std::snprintf(
-            buf, sizeof buf, " %.1f | %.1f | %.1f | %.0f | %s |\n",
+            buf, sizeof buf, " %.1f | %.1f | %.1f | %.0f | %s",
             ro.at("runout_length_m").get<double>(), ro.at("travel_angle_deg").get<double>(),
             ro.at("max_velocity_ms").get<double>(), ro.at("affected_area_m2").get<double>(),
             r->summary->at("end_reason").get<std::string>().c_str());
         md << buf;
+        if (const std::string codes = caveat_codes(*r->summary); !codes.empty())
+            md << " (" << codes << ")";
+        md << " |\n";
         if (!longest || runout_of(*r) > runout_of(*longest)) longest = r;
         if (!shortest || runout_of(*r) < runout_of(*shortest)) shortest = r;
     }

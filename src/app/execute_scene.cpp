@@ -25,6 +25,7 @@
 #include "avalanche/io/summary_writer.hpp"
 #include "avalanche/output/hazard_maps.hpp"
 #include "avalanche/output/monitoring.hpp"
+#include "avalanche/output/run_caveats.hpp"
 #include "avalanche/output/runout.hpp"
 
 namespace avalanche {
@@ -235,6 +236,10 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
     phases.lap("results");
     const RunoutMetrics runout = compute_runout(scene.grid, scene.terrain, top, maps, s.output,
                                                 scene.horizontal_position, scene.cell_area_m2);
+    const std::vector<RunCaveat> caveats = run_caveats(
+        {stats,
+         edge_contact(scene.grid, maps.max_depth(), s.output.h_threshold, scene.outside_data),
+         scene.frame, s.numerics, s.output.h_threshold});
     const ProductInputs products{scene,
                                  release_cells,
                                  s,
@@ -242,6 +247,7 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
                                  scene.probes.empty() ? nullptr : &probes,
                                  stats,
                                  runout,
+                                 caveats,
                                  hash,
                                  options.command_line};
     const std::vector<std::string> files = write_products(options.out_dir, products);
@@ -249,6 +255,8 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
     write_report(options.out_dir, products, files);
     spdlog::info("runout {:.1f} m, travel angle {:.1f} deg, affected area {:.0f} m2; wrote {} product files",
                  runout.runout_length_m, runout.travel_angle_deg, runout.affected_area_m2, files.size() + 1);
+    // Last, so that they are not scrolled away by the lines above.
+    for (const auto& c : caveats) spdlog::warn("{}", c.message);
 
     // summary.json last: its presence says every product is written; "complete" says
     // whether the run reached its end (false after a signal: --resume continues it).
@@ -257,6 +265,8 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
                           "results.h5"};
     nlohmann::json js = make_summary(summary);
     js["runout"] = runout_json(runout);
+    js["caveats"] = nlohmann::json::array();
+    for (const auto& c : caveats) js["caveats"].push_back({{"code", c.code}, {"message", c.message}});
     if (!scene.probes.empty()) js["monitoring_points"] = monitoring_json(probes, maps, scene.grid);
     js["products"] = files;
     js["products"].push_back("report.md");

@@ -28,6 +28,12 @@ void write_report(const std::string& dir, const ProductInputs& in, const std::ve
         m << "> **INCOMPLETE**: the run was interrupted at t = " << fixed(st.simulated_time, 2)
           << " s; the maps cover only the flow up to then. Continue it with "
              "`avalanche-hazard run --resume` on this folder.\n\n";
+    // Before anything a planner might draw a zone from (run_caveats.hpp).
+    if (!in.caveats.empty()) {
+        m << "> **Caveats of this run: the maps may understate the hazard.**\n";
+        for (const auto& c : in.caveats) m << ">\n> - " << c.message << "\n";
+        m << "\n";
+    }
     m << "Software: avalanche-hazard " << software_version() << " (sources `" << source_hash()
       << "`). Configuration hash `" << in.config_hash << "`.\n\nCommand:\n\n```\n"
       << in.command_line << "\n```\n\n";

@@ -72,6 +72,14 @@ std::string header(const ProductInputs& in, const nlohmann::json& summary) {
           << html_escape(std::to_string(in.stats.simulated_time))
           << " s. The maps and numbers below cover only the flow up to then. Continue it with "
              "<code>avalanche-hazard run --resume</code> on this folder.</p>";
+    // What the maps do not show by themselves (run_caveats.hpp), as prominent.
+    if (!in.caveats.empty()) {
+        s << "<div class=\"caveats\" style=\"border:3px solid #e08a00;padding:0.6em\">"
+             "<b>Caveats of this run: the maps may understate the hazard.</b><ul>";
+        for (const auto& c : in.caveats)
+            s << "<li data-code=\"" << html_escape(c.code) << "\">" << html_escape(c.message) << "</li>";
+        s << "</ul></div>";
+    }
     s << "</header>\n";
     return s.str();
 }

@@ -109,6 +109,23 @@ std::string comparison_section(const fs::path& dir, const Table& csv) {
         s << "</tr>\n";
     }
     s << "</table></div>\n";
+    // The scenarios whose maps may understate the hazard (run_caveats.hpp), named here
+    // because they also shape the envelopes below.
+    const auto caveats = std::find(header.begin(), header.end(), "caveats") - header.begin();
+    std::vector<std::string> flagged;
+    for (std::size_t r = 1; r < csv.size(); ++r)
+        if (static_cast<std::size_t>(caveats) < csv[r].size() && !csv[r][caveats].empty())
+            flagged.push_back(csv[r][0]);
+    if (!flagged.empty()) {
+        s << "<p class=\"caveats\" style=\"border:3px solid #e08a00;padding:0.6em\"><b>" << flagged.size()
+          << " of " << csv.size() - 1
+          << " scenarios have caveats</b> (column <code>caveats</code>: <code>reached_edge</code>, the "
+             "flow reached the end of the terrain; <code>not_stopped</code>, it was still moving at "
+             "t_end): their maps, and the envelopes across the scenarios below, may understate the "
+             "hazard. Each scenario's report says why:";
+        for (const auto& id : flagged) s << " " << html_escape(id);
+        s << ".</p>\n";
+    }
     if (!longest.empty())
         s << "<p>Longest runout: <b>" << html_escape(longest) << "</b> ("
           << format_number(longest_m) << " m); shortest: <b>" << html_escape(shortest) << "</b> ("

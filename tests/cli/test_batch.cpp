@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "avalanche/app/cli.hpp"
 #include "avalanche/gis/raster_reader.hpp"
@@ -49,6 +50,7 @@ TEST(Batch, DeltaSweepOnTheChute) {
                                                       "max_velocity_ms",
                                                       "deposit_volume_m3",
                                                       "end_reason",
+                                                      "caveats",
                                                       "wall_s"};
     EXPECT_EQ(csv[0], expected_header);
     const std::vector<std::pair<std::string, std::string>> runout_keys = {
@@ -60,6 +62,7 @@ TEST(Batch, DeltaSweepOnTheChute) {
         {"max_velocity_ms", "max_velocity_ms"},
         {"deposit_volume_m3", "deposit_volume_m3"}};
     std::vector<double> runout;
+    std::map<std::string, std::string> caveats;
     for (std::size_t r = 1; r < csv.size(); ++r) {
         const auto& row = csv[r];
         ASSERT_EQ(row.size(), expected_header.size());
@@ -75,9 +78,18 @@ TEST(Batch, DeltaSweepOnTheChute) {
                       summary["runout"][key].get<double>())
                 << row[0] << " " << col;
         EXPECT_EQ(row[column(csv[0], "end_reason")], summary["end_reason"].get<std::string>());
+        std::string codes;
+        for (const auto& c : summary["caveats"]) codes += (codes.empty() ? "" : ";") + c["code"].get<std::string>();
+        EXPECT_EQ(row[column(csv[0], "caveats")], codes) << row[0];
+        caveats[row[0]] = codes;
         EXPECT_EQ(std::strtod(row.back().c_str(), nullptr), summary["wall_s"].get<double>());
         runout.push_back(summary["runout"]["runout_length_m"].get<double>());
     }
+    // The least friction runs off the chute's lower end; the most stops on it.
+    EXPECT_EQ(caveats["delta=15"], "reached_edge");
+    EXPECT_EQ(caveats["delta=30"], "");
+    EXPECT_EQ(test::read_text(out + "/delta=30/report.md").find("Caveats"), std::string::npos);
+    EXPECT_NE(test::read_text(out + "/delta=15/report.md").find("Caveats of this run"), std::string::npos);
     // Issue 4: a higher bed friction angle stops the flow earlier.
     for (std::size_t k = 1; k < runout.size(); ++k)
         EXPECT_LT(runout[k], runout[k - 1]) << "delta index " << k;

@@ -10,6 +10,7 @@
 #include "avalanche/core/simulation.hpp"
 #include "avalanche/output/hazard_maps.hpp"
 #include "avalanche/output/monitoring.hpp"
+#include "avalanche/output/run_caveats.hpp"
 #include "avalanche/output/runout.hpp"
 
 namespace avalanche {
@@ -23,6 +24,9 @@ struct ProductInputs {
     const MonitoringPoints* probes;  // null without monitoring points
     const RunStatistics& stats;
     const RunoutMetrics& runout;
+    // Why the maps may understate the hazard (reached the edge, not stopped); printed in
+    // both reports as in the log and summary.json.
+    const std::vector<RunCaveat>& caveats;
     std::string config_hash;
     std::string command_line;
 };

@@ -30,7 +30,7 @@ struct NumericsParams {
     double h_min_relative = 1e-5;
     int source_substeps = 1;     // m in paper eq. 12
     Boundary boundary = Boundary::open;
-    double t_end = 60.0;         // s, hard end of the simulation
+    double t_end = 300.0;        // s, hard end of the simulation
     double output_interval = 1.0;  // s between snapshots
     double stop_ke_fraction = 1e-4;  // flow stopped when KE < fraction * max KE ...
     double stop_duration = 1.0;      // ... continuously for this long (s)
