@@ -16,13 +16,21 @@ namespace {
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+// The coarse parametric chute run with `flags` into dir/out; fails the test on a non-zero exit.
+test::ProcessResult run_chute(const test::ScratchDir& dir, const std::string& flags) {
+    const std::string scenario = dir.write("base.toml", test::kCoarseParametricChute);
+    const auto r = test::run_binary(dir, "run -q --scenario '" + scenario + "' " + flags + " --out '" +
+                                             dir.file("out") + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r;
+}
+
 TEST(RunCaveatsCli, AFlowOffTheChuteIsFlaggedWithTheCellsOfTheMapAtTheEdge) {
     test::ScratchDir dir("caveats-edge");
-    const std::string scenario = dir.write("base.toml", test::kCoarseParametricChute);
     const std::string out = dir.file("out");
     // delta 15: the flow crosses the flat runout zone and leaves at the chute's lower end.
-    const auto r = test::run_binary(dir, "run -q --scenario '" + scenario + "' --delta 15 --out '" + out + "'");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto r = run_chute(dir, "--delta 15");
+    ASSERT_EQ(r.exit_code, 0);
     const auto s = test::read_json(out + "/summary.json");
     ASSERT_GE(s["caveats"].size(), 1u) << s.dump(2);
     EXPECT_EQ(s["caveats"][0]["code"], "reached_edge");
@@ -58,10 +66,9 @@ TEST(RunCaveatsCli, AFlowOffTheChuteIsFlaggedWithTheCellsOfTheMapAtTheEdge) {
 
 TEST(RunCaveatsCli, ARunCutShortByTEndSaysItsKineticEnergy) {
     test::ScratchDir dir("caveats-time");
-    const std::string scenario = dir.write("base.toml", test::kCoarseParametricChute);
     const std::string out = dir.file("out");
-    const auto r = test::run_binary(dir, "run -q --scenario '" + scenario + "' --t-end 2 --out '" + out + "'");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto r = run_chute(dir, "--t-end 2");
+    ASSERT_EQ(r.exit_code, 0);
     const auto s = test::read_json(out + "/summary.json");
     ASSERT_EQ(s["end_reason"], "end_time");
     ASSERT_EQ(s["caveats"].size(), 1u) << s.dump(2);  // at 2 s the flow is still on the slope
