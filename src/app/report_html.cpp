@@ -76,8 +76,13 @@ std::string header(const ProductInputs& in, const nlohmann::json& summary) {
     if (!in.caveats.empty()) {
         s << "<div class=\"caveats\" style=\"border:3px solid #e08a00;padding:0.6em\">"
              "<b>Caveats of this run: the maps may understate the hazard.</b><ul>";
-        for (const auto& c : in.caveats)
-            s << "<li data-code=\"" << html_escape(c.code) << "\">" << html_escape(c.message) << "</li>";
+        for (const auto& c : in.caveats) {
+            // The log's "m3" as the rest of this report writes it.
+            std::string text = html_escape(c.message);
+            for (auto p = text.find(" m3 "); p != std::string::npos; p = text.find(" m3 ", p))
+                text.replace(p + 2, 1, "³");
+            s << "<li data-code=\"" << html_escape(c.code) << "\">" << text << "</li>";
+        }
         s << "</ul></div>";
     }
     s << "</header>\n";
