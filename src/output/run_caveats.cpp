@@ -25,10 +25,11 @@ EdgeContact edge_contact(const Grid& grid, std::span<const double> max_depth, do
     auto sink = [&](int i, int j) {
         return i >= 0 && i < nx && j >= 0 && j < ny && sinks[k(i, j)] != 0;
     };
+    // The mask first (a byte per cell): the depth map is read only beside the sinks.
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i)
-            if (reached(i, j) && (sink(i, j) || sink(i - 1, j) || sink(i + 1, j) || sink(i, j - 1) ||
-                                  sink(i, j + 1)))
+            if ((sink(i, j) || sink(i - 1, j) || sink(i + 1, j) || sink(i, j - 1) || sink(i, j + 1)) &&
+                reached(i, j))
                 ++c.beside_no_data;
     return c;
 }
