@@ -137,6 +137,7 @@ std::string ranking_section(const std::vector<const BatchResult*>& rows,
     }
     return md.str();
 }
+
 // The codes of a scenario's caveats (run_caveats.hpp), ';'-separated; empty without any.
 std::string caveat_codes(const nlohmann::json& summary) {
     std::string codes;
