@@ -94,7 +94,7 @@ RunCaveat reached_edge(const CaveatInputs& in) {
                          "might have gone farther: "
                        : ". The runout, the affected area and the deposit end at the edge of the grid, so the "
                          "maps understate the hazard beyond it: ";
-    m += dem ? "extend the DEM past the runout." : "lengthen or widen the chute.";
+    m += dem ? "extend the DEM beyond the edges it reached." : "lengthen or widen the chute.";
     return {"reached_edge", m};
 }
 
