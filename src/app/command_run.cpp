@@ -72,6 +72,10 @@ void add_scenario_flags(CLI::App& cmd, ScenarioOverrides& o) {
                  enum_name(kEarthPressureNames, m.earth_pressure));
     add_override(cmd, "--cell-size", o.cell_size, "Cell size (m); 0 = DEM resolution", "0");
     add_override(cmd, "--t-end", o.t_end, "End time (s)", text(n.t_end));
+    add_override(cmd, "--stop-ke-fraction", o.stop_ke_fraction,
+                 "Stop when the kinetic energy stays below this fraction of its maximum for "
+                 "numerics.stop_duration; 1e-3 ends creeping tails sooner (docs/numerics.md)",
+                 text(n.stop_ke_fraction));
     add_override(cmd, "--cfl", o.cfl, "Courant number in (0, 0.5]", text(n.cfl));
     add_override(cmd, "--scheme", o.scheme, "Flux scheme: waf|godunov",
                  enum_name(kSchemeNames, n.scheme));

@@ -92,6 +92,7 @@ std::optional<std::string> flag_for_key(const std::string& key, const ScenarioOv
         {"numerics.cell_size", {"--cell-size", o.cell_size.has_value()}},
         {"numerics.cell_size", {"--quality", o.quality.has_value()}},
         {"numerics.t_end", {"--t-end", o.t_end.has_value()}},
+        {"numerics.stop_ke_fraction", {"--stop-ke-fraction", o.stop_ke_fraction.has_value()}},
         {"numerics.cfl", {"--cfl", o.cfl.has_value()}},
         {"numerics.output_interval", {"--output-interval", o.output_interval.has_value()}},
     };
@@ -131,6 +132,7 @@ void apply_overrides(Scenario& s, const ScenarioOverrides& o) {
     if (o.quality) apply_quality(s, parse_quality(*o.quality, "--quality"));
     if (o.cell_size) s.cell_size = *o.cell_size, s.cell_size_factor = 1.0;
     if (o.t_end) s.numerics.t_end = *o.t_end;
+    if (o.stop_ke_fraction) s.numerics.stop_ke_fraction = *o.stop_ke_fraction;
     if (o.cfl) s.numerics.cfl = *o.cfl;
     if (o.scheme) s.numerics.scheme = parse_choice(kSchemeNames, *o.scheme, "--scheme");
     if (o.limiter) s.numerics.limiter = parse_choice(kLimiterNames, *o.limiter, "--limiter");

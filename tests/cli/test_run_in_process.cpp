@@ -102,6 +102,8 @@ TEST(RunInProcess, FlagsOverrideTheScenarioFile) {
                        "minmod",
                        "--cfl",
                        "0.4",
+                       "--stop-ke-fraction",
+                       "0.001",
                        "--density",
                        "1500",
                        "--earth-pressure",
@@ -118,6 +120,7 @@ TEST(RunInProcess, FlagsOverrideTheScenarioFile) {
     EXPECT_EQ(p["numerics"]["scheme"], "godunov");
     EXPECT_EQ(p["numerics"]["limiter"], "minmod");
     EXPECT_EQ(p["numerics"]["cfl"], 0.4);
+    EXPECT_EQ(p["numerics"]["stop_ke_fraction"], 0.001);
     EXPECT_EQ(p["numerics"]["cell_size"], 0.5);  // from the file
     EXPECT_EQ(p["material"]["phi_deg"], 30.0);
     EXPECT_EQ(p["material"]["delta_deg"], 18.0);

@@ -46,6 +46,10 @@ TEST(ScenarioOverrides, ErrorsNameTheFlagWhenAFlagSetTheValue) {
     o.phi = 15.0;
     m = config_error([&] { assemble_scenario(file, o); });
     EXPECT_EQ(m.rfind(file + ": material.delta_deg:", 0), 0u) << m;
+    o = {};
+    o.stop_ke_fraction = 1.5;
+    m = config_error([&] { assemble_scenario(file, o); });
+    EXPECT_EQ(m.rfind("--stop-ke-fraction: expected a fraction in [0, 1)", 0), 0u) << m;
 }
 
 TEST(ScenarioOverrides, FlagsThatDoNotFitTheScenarioAreRefused) {

@@ -24,6 +24,7 @@ struct ScenarioOverrides {
     std::optional<std::string> earth_pressure;   // --earth-pressure
     std::optional<double> cell_size;             // --cell-size: numerics.cell_size
     std::optional<double> t_end;                 // --t-end
+    std::optional<double> stop_ke_fraction;      // --stop-ke-fraction
     std::optional<double> cfl;                   // --cfl
     std::optional<std::string> scheme;           // --scheme
     std::optional<std::string> limiter;          // --limiter
