@@ -74,8 +74,7 @@ std::string header(const ProductInputs& in, const nlohmann::json& summary) {
              "<code>avalanche-hazard run --resume</code> on this folder.</p>";
     // What the maps do not show by themselves (run_caveats.hpp), as prominent.
     if (!in.caveats.empty()) {
-        s << "<div class=\"caveats\" style=\"border:3px solid #e08a00;padding:0.6em\">"
-             "<b>Caveats of this run: the maps may understate the hazard.</b><ul>";
+        s << "<div class=\"caveats\"><b>Caveats of this run: the maps may understate the hazard.</b><ul>";
         for (const auto& c : in.caveats) {
             // The log's "m3" as the rest of this report writes it.
             std::string text = html_escape(c.message);

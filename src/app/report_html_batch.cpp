@@ -117,7 +117,7 @@ std::string comparison_section(const fs::path& dir, const Table& csv) {
         if (static_cast<std::size_t>(caveats) < csv[r].size() && !csv[r][caveats].empty())
             flagged.push_back(csv[r][0]);
     if (!flagged.empty()) {
-        s << "<p class=\"caveats\" style=\"border:3px solid #e08a00;padding:0.6em\"><b>" << flagged.size()
+        s << "<p class=\"caveats\"><b>" << flagged.size()
           << " of " << csv.size() - 1
           << " scenarios have caveats</b> (column <code>caveats</code>: <code>reached_edge</code>, the "
              "flow reached the end of the terrain; <code>not_stopped</code>, it was still moving at "

@@ -90,6 +90,7 @@ code, .hash { font-family: "DejaVu Sans Mono", monospace; font-size: 0.9em; }
 table.comparison { font-size: 0.82em; }
 table.comparison th { min-width: 3em; }
 .note { color: #555; font-size: 0.92em; }
+.caveats { border: 3px solid #e08a00; padding: 0.6em; }
 )";
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "avalanche/core/grid.hpp"
 #include "avalanche/core/simulation.hpp"
 #include "avalanche/numerics/parameters.hpp"
+#include "avalanche/output/output_params.hpp"
 #include "avalanche/physics/terrain.hpp"
 
 namespace avalanche {
@@ -45,7 +46,7 @@ struct CaveatInputs {
     EdgeContact edges;
     Frame frame = Frame::dem;  // names the sides: west/east/south/north, or the chute's ends
     const NumericsParams& numerics;
-    double h_threshold = 0.01;  // m: what counts as reached (OutputParams)
+    double h_threshold = OutputParams{}.h_threshold;  // m: what counts as reached
 };
 
 // The caveats of a finished run, reached_edge first. An interrupted run has none here:
