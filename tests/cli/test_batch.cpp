@@ -79,7 +79,10 @@ TEST(Batch, DeltaSweepOnTheChute) {
                 << row[0] << " " << col;
         EXPECT_EQ(row[column(csv[0], "end_reason")], summary["end_reason"].get<std::string>());
         std::string codes;
-        for (const auto& c : summary["caveats"]) codes += (codes.empty() ? "" : ";") + c["code"].get<std::string>();
+        for (const auto& c : summary["caveats"]) {
+            if (!codes.empty()) codes += ';';
+            codes += c["code"].get<std::string>();
+        }
         EXPECT_EQ(row[column(csv[0], "caveats")], codes) << row[0];
         caveats[row[0]] = codes;
         EXPECT_EQ(std::strtod(row.back().c_str(), nullptr), summary["wall_s"].get<double>());
