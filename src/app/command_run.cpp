@@ -83,6 +83,11 @@ void add_scenario_flags(CLI::App& cmd, ScenarioOverrides& o) {
                  enum_name(kLimiterNames, n.limiter));
     add_override(cmd, "--output-interval", o.output_interval, "Time between snapshots (s)",
                  text(n.output_interval));
+    cmd.add_flag("--rest-faces", o.rest_faces,
+                 "Faces between cells friction holds at rest pass no mass while below the "
+                 "Coulomb limit: deposits stay put instead of creeping (numerics.rest_faces; "
+                 "docs/numerics.md)")
+        ->group(kOverrideGroup);
     add_override(cmd, "--quality", o.quality,
                  "Speed/accuracy preset: draft|standard|fine (docs/performance.md); "
                  "--scheme, --limiter, --cfl, --cell-size win over it",

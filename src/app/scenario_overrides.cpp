@@ -137,6 +137,7 @@ void apply_overrides(Scenario& s, const ScenarioOverrides& o) {
     if (o.scheme) s.numerics.scheme = parse_choice(kSchemeNames, *o.scheme, "--scheme");
     if (o.limiter) s.numerics.limiter = parse_choice(kLimiterNames, *o.limiter, "--limiter");
     if (o.output_interval) s.numerics.output_interval = *o.output_interval;
+    if (o.rest_faces) s.numerics.rest_faces = true;
 }
 
 Scenario assemble_scenario(const std::optional<std::string>& scenario_file,

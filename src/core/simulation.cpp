@@ -65,6 +65,9 @@ namespace {
 
 // The checkpoint's copy of the cells' Savage-Hutter regimes (Stepper::regime).
 constexpr const char* kRegimeDataset = "solver/regime";
+// ... and of the cells held at rest by friction (numerics.rest_faces; Stepper::held_at_rest):
+// empty before the first advection.
+constexpr const char* kHeldDataset = "solver/held_at_rest";
 
 // Boxes smaller than this are scanned or copied on one thread (stepper.hpp: waking
 // the team costs more than a pass over a few thousand cells).
@@ -168,6 +171,16 @@ void Simulation::resume(const LoopState& loop, const std::vector<double>& h, con
                                                " holds " + std::to_string(r) +
                                                ", expected regime flags 0 to 3");
     stepper_.set_regime(CellVector<RegimeFlags>(regime.begin(), regime.end()));
+    if (numerics_.rest_faces) {
+        const std::vector<std::int64_t>& held =
+            observers.integer(kHeldDataset, static_cast<long long>(n));
+        for (const std::int64_t f : held)
+            if (f != 0 && f != 1)
+                throw InputError("checkpoint", "dataset " + std::string(kHeldDataset) + " holds " +
+                                                   std::to_string(f) + ", expected 0 or 1");
+        // Before the first step the first advection makes its flags from the state.
+        if (loop.steps > 0) stepper_.set_held_at_rest(CellVector<HeldFlag>(held.begin(), held.end()));
+    }
     for (auto* o : observers_) o->restore(observers);
     loop_ = loop;
     resumed_ = true;
@@ -242,6 +255,16 @@ RunStatistics Simulation::run() {
             saved.assign(state_.h.raw().size(), kRegimeAtStart);
         else
             saved.assign(regime.begin(), regime.end());
+        if (numerics_.rest_faces) {
+            // Empty before the first advection, and with S L S (which reads only the
+            // friction stage's flags): saved as zeros, which the next step never reads.
+            const CellVector<HeldFlag> held = stepper_.held_at_rest();
+            std::vector<std::int64_t>& saved_held = c.observers.integers[kHeldDataset];
+            if (held.empty())
+                saved_held.assign(state_.h.raw().size(), 0);
+            else
+                saved_held.assign(held.begin(), held.end());
+        }
         write_checkpoint_(c);
     };
 

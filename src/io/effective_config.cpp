@@ -65,6 +65,7 @@ json numerics_json(const NumericsParams& n, double cell_size) {
             {"h_min", n.h_min},
             {"h_min_relative", n.h_min_relative},
             {"source_substeps", n.source_substeps},
+            {"rest_faces", n.rest_faces},
             {"stop_ke_fraction", n.stop_ke_fraction},
             {"stop_duration", n.stop_duration},
             {"active_margin", n.active_margin},

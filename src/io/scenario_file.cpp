@@ -144,9 +144,11 @@ NumericsParams parse_numerics(TomlSection& n, double& cell_size) {
     if (auto v = n.number("stop_duration")) p.stop_duration = *v;
     if (auto v = n.choice("splitting", kSplittingNames)) p.splitting = *v;
     if (auto v = n.number("gravity")) p.gravity = *v;
+    if (auto v = n.boolean("rest_faces")) p.rest_faces = *v;
     n.refuse_unread_keys(
         "[numerics] takes cell_size, scheme, limiter, cfl, t_end, output_interval, h_min, "
-        "boundary, source_substeps, stop_ke_fraction, stop_duration, splitting, gravity");
+        "boundary, source_substeps, stop_ke_fraction, stop_duration, splitting, gravity, "
+        "rest_faces");
     return p;
 }
 

@@ -82,6 +82,13 @@ std::optional<std::int64_t> TomlSection::integer(std::string_view key) {
     return n->value<std::int64_t>();
 }
 
+std::optional<bool> TomlSection::boolean(std::string_view key) {
+    const toml::node* n = get(key);
+    if (!n) return std::nullopt;
+    if (!n->is_boolean()) fail(key, "expected true or false, got " + describe_type(*n));
+    return n->value<bool>();
+}
+
 std::optional<std::string> TomlSection::text(std::string_view key) {
     const toml::node* n = get(key);
     if (!n) return std::nullopt;

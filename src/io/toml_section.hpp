@@ -26,6 +26,7 @@ class TomlSection {
 
     std::optional<double> number(std::string_view key);
     std::optional<std::int64_t> integer(std::string_view key);
+    std::optional<bool> boolean(std::string_view key);
     std::optional<std::string> text(std::string_view key);
     std::optional<std::array<double, 2>> pair(std::string_view key);
     // A string or an array of strings (e.g. one DEM tile or several).

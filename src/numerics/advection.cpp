@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <vector>
 
 #include "avalanche/numerics/cell_rows.hpp"
@@ -185,6 +186,35 @@ void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffer
                 w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + kGhostLayers + ia);
 }
 
+// ---------------------------------------------------------------- faces held at rest
+
+// hold_rest_faces_row on face row r of the strip: x-faces (face i between cells i - 1
+// and i of row r) or y-faces (face i between cells i of rows r - 1 and r), faces
+// [f0, f1); the fluxes address column 0 of the face row.
+void Stepper::hold_rest_faces(const State& s, const StripBuffers& w, const HeldFlag* held,
+                              bool x_faces, int r, int f0, int f1, double* fh, double* fn,
+                              double* ft) const {
+    const int rl = x_faces ? r : r - 1, il = x_faces ? -1 : 0;  // the faces' "l" cells
+    const std::ptrdiff_t gl = s.h.index(il, rl), gr = s.h.index(0, r);
+    const std::ptrdiff_t kl = w.k(il, rl), kr = w.k(0, r);
+    const auto pair = [&](const Field2D& f) {
+        return std::pair{f.raw().data() + gl, f.raw().data() + gr};
+    };
+    const std::vector<double>& c = x_faces ? w.cx : w.cy;
+    const auto [an_l, an_r] = pair(x_faces ? terrain_.ax : terrain_.ay);
+    const auto [at_l, at_r] = pair(x_faces ? terrain_.ay : terrain_.ax);
+    const auto [gn_l, gn_r] = pair(terrain_.gn);
+    RestFaceRowInput in{s.h.raw().data() + gl, s.h.raw().data() + gr, held + gl, held + gr,
+                        c.data() + kl, c.data() + kr, an_l, an_r, at_l, at_r, gn_l, gn_r,
+                        nullptr, nullptr, nullptr, nullptr};
+    if (terrain_.has_metric) {
+        std::tie(in.sn_l, in.sn_r) = pair(x_faces ? terrain_.sx : terrain_.sy);
+        std::tie(in.st_l, in.st_r) = pair(x_faces ? terrain_.sy : terrain_.sx);
+    }
+    const RestFaceRowParams p{1.0 / (x_faces ? grid_.dx : grid_.dy), tan_delta_, h_min_};
+    hold_rest_faces_row(in, p, fh, fn, ft, f0, f1);
+}
+
 // ---------------------------------------------------------------- one strip
 
 void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int Je,
@@ -301,6 +331,21 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
         }
     };
 
+    // Faces friction holds at rest (numerics.rest_faces, rest_faces.hpp): before the
+    // edges' own rules, which override them.
+    const auto hold_x_faces = [&](int r) {
+        if (rest_in_ == nullptr) return;
+        const std::ptrdiff_t k = w.k(0, r);
+        hold_rest_faces(s, w, rest_in_, true, r, b.i0, b.i1 + 1, w.fx_h.data() + k,
+                        w.fx_hu.data() + k, w.fx_hv.data() + k);
+    };
+    const auto hold_y_faces = [&](int r) {
+        if (rest_in_ == nullptr) return;
+        const std::ptrdiff_t k = w.k(0, r);
+        hold_rest_faces(s, w, rest_in_, false, r, b.i0, b.i1, w.fy_h.data() + k,
+                        w.fy_hv.data() + k, w.fy_hu.data() + k);
+    };
+
     // 2. x-faces: WAF on the state advanced tau/2 in y (Wang & Li 2017 eqs. 6-9), or
     // first-order HLLC on the state.
     if (waf) {
@@ -334,6 +379,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
             in.a = w.row_a.data() + c0;
             waf_face_row(in, face_out(w.fx_h, w.fx_hu, w.fx_hv, k), b.i1 + 1 - b.i0, hd, dt_dx,
                          lim);
+            hold_x_faces(r);
             fix_x_faces(r);
         }
     } else {
@@ -342,6 +388,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
                 with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.ax, w.k(b.i0, r), 1),
                                 w.su, w.sv, w.k(b.i0, r)),
                 face_out(w.fx_h, w.fx_hu, w.fx_hv, w.k(b.i0, r)), b.i1 + 1 - b.i0, hd);
+            hold_x_faces(r);
             fix_x_faces(r);
         }
     }
@@ -375,6 +422,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
                                                  w.pred_hu.data(), k, w.cy, w.pred_a, k, st),
                                          w.pred_v, w.pred_u, k),
                          face_out(w.fy_h, w.fy_hv, w.fy_hu, k), n, hd, dt_dy, lim);
+            hold_y_faces(r);
             fix_y_faces(r);
         }
     } else {
@@ -383,6 +431,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
                 with_velocities(face_in(sh, shv, shu, full(b.i0, r), w.cy, w.ay, w.k(b.i0, r), st),
                                 w.sv, w.su, w.k(b.i0, r)),
                 face_out(w.fy_h, w.fy_hv, w.fy_hu, w.k(b.i0, r)), b.i1 - b.i0, hd);
+            hold_y_faces(r);
             fix_y_faces(r);
         }
     }
@@ -438,11 +487,13 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
                                 terrain_.elevation.raw().data() + kf,
                                 metric ? terrain_.sx.raw().data() + kf : nullptr,
                                 metric ? terrain_.sy.raw().data() + kf : nullptr};
-        if (wait)
-            update_row(in, up, w.out_h.data() + kw, w.out_hu.data() + kw, w.out_hv.data() + kw,
-                       b.i0, b.i1);
-        else
-            update_row(in, up, s.h.row(r), s.hu.row(r), s.hv.row(r), b.i0, b.i1);
+        double* h_new = wait ? w.out_h.data() + kw : s.h.row(r);
+        double* hu_new = wait ? w.out_hu.data() + kw : s.hu.row(r);
+        double* hv_new = wait ? w.out_hv.data() + kw : s.hv.row(r);
+        update_row(in, up, h_new, hu_new, hv_new, b.i0, b.i1);
+        if (rest_in_ != nullptr) keep_held_at_rest(rest_in_ + kf, fxh + kw, fyh + kw, w.stride,
+                                                   hu_new, hv_new,
+                                                   rest_out_ ? rest_out_ + kf : nullptr, b.i0, b.i1);
     }
 
     // 6. Volume through the open edges, after scaling, per boundary face (summed in
@@ -502,6 +553,32 @@ void Stepper::advect(State& s, double tau) {
     // replace the previous ones in regime_ as they go, but for the rows near a segment's
     // inner ends, which the neighbouring segment also computes from the previous ones.
     if (regime_.size() != s.h.raw().size()) regime_ = CellVector<RegimeFlags>(s.h.raw().size());  // at start
+    // The flags of the faces friction holds (rest_faces.hpp): after the friction stage
+    // those it set; otherwise (the first advection of an L S L step) those of its cells
+    // that the advection after it left quiet.
+    rest_in_ = nullptr;
+    rest_out_ = nullptr;
+    if (numerics_.rest_faces) {
+        const std::size_t n = s.h.raw().size();
+        if (after_sources_) {
+            if (held_.size() == n) rest_in_ = held_.data();
+            if (numerics_.splitting == Splitting::lsl) {
+                if (held_quiet_.size() != n) held_quiet_ = CellVector<HeldFlag>(n);
+                rest_out_ = held_quiet_.data();
+            }
+        } else {
+            // Before any friction stage (the first advection of an L S L run): the cells at
+            // rest, as the friction stage would hold them where the faces' test passes.
+            if (held_quiet_.size() != n) {
+                held_quiet_ = CellVector<HeldFlag>(n);
+                for (int j = 0; j < grid_.ny; ++j)
+                    held_at_rest_row(s.h.row(j), s.hu.row(j), s.hv.row(j), h_min_,
+                                     held_quiet_.data() + s.h.index(0, j), 0, grid_.nx);
+            }
+            rest_in_ = held_quiet_.data();
+        }
+        after_sources_ = false;
+    }
     const bool regimes = material_.earth_pressure != EarthPressureModel::isotropic;
 
     // The strips of the bands (make_bands) in row order, and the cells before each.

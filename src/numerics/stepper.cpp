@@ -160,6 +160,13 @@ void Stepper::set_regime(CellVector<RegimeFlags> r) {
     regime_ = std::move(r);
 }
 
+CellVector<HeldFlag> Stepper::held_at_rest() const { return held_quiet_; }
+
+void Stepper::set_held_at_rest(CellVector<HeldFlag> held) {
+    held_quiet_ = std::move(held);
+    after_sources_ = false;
+}
+
 void Stepper::reset_active_box(const State& s) {
     shrink_box_to_wet(s, ActiveBox{0, grid_.nx, 0, grid_.ny});
 }
@@ -365,8 +372,10 @@ void Stepper::thin_layer_velocities(State& s) const {
 // Point-wise sources, friction last (MODEL.md 2.4, GeoClaw src2): tangential
 // gravity first; then Coulomb friction of magnitude f = tan(delta) N dt against the
 // true velocity, which stops the cell if |u| <= f and never reverses it.
-void Stepper::apply_sources(State& s, double dt) const {
+void Stepper::apply_sources(State& s, double dt) {
     const ActiveBox b = box_;
+    const bool rest = numerics_.rest_faces;
+    if (rest && held_.size() != s.h.raw().size()) held_ = CellVector<HeldFlag>(s.h.raw().size());
     const int m = numerics_.source_substeps;
     const SourceRowParams p{dt / m, m, tan_delta_, numerics_.gravity, energy_budget_};
     const bool curv = terrain_.has_curvature, metric = terrain_.has_metric;
@@ -383,7 +392,11 @@ void Stepper::apply_sources(State& s, double dt) const {
                                  metric ? terrain_.sy.row(j) : nullptr};
         const auto [i0, i1] = band_columns_[static_cast<std::size_t>(j - b.j0)];
         if (i0 < i1) apply_sources_row(s.h.row(j), s.hu.row(j), s.hv.row(j), t, p, i0, i1);
+        if (rest && i0 < i1)
+            held_at_rest_row(s.h.row(j), s.hu.row(j), s.hv.row(j), h_min_,
+                             held_.data() + s.h.index(0, j), i0, i1);
     }
+    after_sources_ = true;
 }
 
 }  // namespace avalanche

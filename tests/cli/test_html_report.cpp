@@ -117,13 +117,15 @@ std::string command_output(const std::string& cmd) {
     return out;
 }
 
-// A value of the report equals the summary's: strings exactly, integers exactly, other
-// numbers within the report's rounding.
+// A value of the report equals the summary's: strings exactly, booleans as yes / no,
+// integers exactly, other numbers within the report's rounding.
 void expect_same(const Marked& m, const nlohmann::json& v) {
     if (v.is_null()) {
         EXPECT_TRUE(m.text == "none" || m.text == "not reached") << m.key << ": " << m.text;
     } else if (v.is_string()) {
         EXPECT_EQ(m.text, v.get<std::string>()) << m.key;
+    } else if (v.is_boolean()) {
+        EXPECT_EQ(m.text, v.get<bool>() ? "yes" : "no") << m.key;
     } else if (v.is_number_integer() || v.is_number_unsigned()) {
         EXPECT_EQ(m.text, v.dump()) << m.key;
     } else if (v.is_number()) {

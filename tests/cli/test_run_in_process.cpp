@@ -104,6 +104,7 @@ TEST(RunInProcess, FlagsOverrideTheScenarioFile) {
                        "0.4",
                        "--stop-ke-fraction",
                        "0.001",
+                       "--rest-faces",
                        "--density",
                        "1500",
                        "--earth-pressure",
@@ -121,6 +122,7 @@ TEST(RunInProcess, FlagsOverrideTheScenarioFile) {
     EXPECT_EQ(p["numerics"]["limiter"], "minmod");
     EXPECT_EQ(p["numerics"]["cfl"], 0.4);
     EXPECT_EQ(p["numerics"]["stop_ke_fraction"], 0.001);
+    EXPECT_EQ(p["numerics"]["rest_faces"], true);
     EXPECT_EQ(p["numerics"]["cell_size"], 0.5);  // from the file
     EXPECT_EQ(p["material"]["phi_deg"], 30.0);
     EXPECT_EQ(p["material"]["delta_deg"], 18.0);

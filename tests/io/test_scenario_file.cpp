@@ -44,6 +44,7 @@ stop_ke_fraction = 1e-3
 stop_duration = 2.0
 splitting = "sls"
 gravity = 9.80665
+rest_faces = true
 
 [points]
 file = "points.csv"
@@ -108,6 +109,7 @@ TEST(ScenarioFile, ReadsEveryKeyOfAChuteScenario) {
     EXPECT_EQ(s.numerics.stop_duration, 2.0);
     EXPECT_EQ(s.numerics.splitting, Splitting::sls);
     EXPECT_EQ(s.numerics.gravity, 9.80665);
+    EXPECT_TRUE(s.numerics.rest_faces);
     ASSERT_TRUE(s.points.has_value());
     EXPECT_EQ(s.points->path, "/data/case/points.csv");  // relative to the scenario's folder
     EXPECT_EQ(s.points->crs, "EPSG:2056");
@@ -218,6 +220,8 @@ TEST(ScenarioFile, RefusesWrongTypesNamingTheKey) {
     m = config_error(
         [] { parse(replaced(kFullChute, "source_substeps = 3", "source_substeps = 2.5")); });
     EXPECT_NE(m.find("numerics.source_substeps: expected an integer"), std::string::npos) << m;
+    m = config_error([] { parse(replaced(kFullChute, "rest_faces = true", "rest_faces = 1")); });
+    EXPECT_EQ(m, "scenario.toml: numerics.rest_faces: expected true or false, got an integer");
     m = config_error(
         [] { parse(replaced(kFullChute, "transition = [20.0, 26.0]", "transition = 20.0")); });
     EXPECT_NE(m.find("terrain.transition: expected an array of two numbers"), std::string::npos)

@@ -29,13 +29,6 @@ double cpu_seconds() {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kG = 9.81;
 
-MaterialParams material(EarthPressureModel model, double phi_deg, double delta_deg) {
-    MaterialParams m;
-    m.phi_deg = phi_deg;
-    m.delta_deg = delta_deg;
-    m.earth_pressure = model;
-    return m;
-}
 
 // The active k_x of a material (1 for the isotropic model).
 double active_kx(const MaterialParams& m) { return earth_pressure_coefficients(m).kx_active; }
@@ -290,17 +283,7 @@ CreepResult run_creep(const NumericsParams& n, EarthPressureModel model, double 
     const Grid g = box_grid(-14.0, 14.0, -14.0, 14.0, dx);
     const TerrainFields terrain = plane_terrain(g, 0.0, kG);
     const MaterialParams mat = material(model, 35.0, 20.0);
-    const auto pile = [&](double x, double y) {
-        return kHeight * std::max(0.0, 1.0 - (x * x + y * y) / (kRadius * kRadius));
-    };
-    State s = make_state(g, [&](double xa, double xb, double ya, double yb) {
-        double sum = 0.0;
-        constexpr int kSub = 4;
-        for (int b = 0; b < kSub; ++b)
-            for (int a = 0; a < kSub; ++a)
-                sum += pile(xa + (a + 0.5) * (xb - xa) / kSub, ya + (b + 0.5) * (yb - ya) / kSub);
-        return sum / (kSub * kSub);
-    });
+    State s = paraboloid_at_rest(g, kHeight, kRadius);
     const NumericsParams num = with_boundary(n, Boundary::open, kG);
     Stepper stepper(g, terrain, mat, num, effective_h_min(num, s, terrain));
     const double level = 1e-3 * kHeight;
@@ -316,6 +299,28 @@ CreepResult run_creep(const NumericsParams& n, EarthPressureModel model, double 
             if (s.h(i, j) > 0.0)
                 r.max_speed = std::max(r.max_speed, std::hypot(s.hu(i, j), s.hv(i, j)) / s.h(i, j));
     return r;
+}
+
+MaterialParams material(EarthPressureModel model, double phi_deg, double delta_deg) {
+    MaterialParams m;
+    m.phi_deg = phi_deg;
+    m.delta_deg = delta_deg;
+    m.earth_pressure = model;
+    return m;
+}
+
+State paraboloid_at_rest(const Grid& g, double height, double radius) {
+    const auto pile = [&](double x, double y) {
+        return height * std::max(0.0, 1.0 - (x * x + y * y) / (radius * radius));
+    };
+    return make_state(g, [&](double xa, double xb, double ya, double yb) {
+        double sum = 0.0;
+        constexpr int kSub = 4;
+        for (int b = 0; b < kSub; ++b)
+            for (int a = 0; a < kSub; ++a)
+                sum += pile(xa + (a + 0.5) * (xb - xa) / kSub, ya + (b + 0.5) * (yb - ya) / kSub);
+        return sum / (kSub * kSub);
+    });
 }
 
 }  // namespace avalanche::analytic

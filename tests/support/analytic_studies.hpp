@@ -5,6 +5,8 @@
 // docs/verification.md). Each returns error norms, never fields (STYLE.md 11).
 #include <vector>
 
+#include "avalanche/core/grid.hpp"
+#include "avalanche/core/state.hpp"
 #include "avalanche/numerics/parameters.hpp"
 #include "avalanche/physics/material.hpp"
 #include "support/analytic_dam_break.hpp"
@@ -97,7 +99,13 @@ std::vector<double> run_smooth(const SmoothCase& c, const NumericsParams& n, int
 std::vector<double> smooth_errors(const SmoothCase& c, const NumericsParams& n, int n0, int levels,
                                   int ref_factor);
 
+// A material of the studies: phi, delta (deg) and the earth-pressure model.
+MaterialParams material(EarthPressureModel model, double phi_deg, double delta_deg);
+
 // ---------------------------------------------------------------- rigid block / creep
+// A paraboloid of height H and radius R centred on (0, 0), at rest: cell averages of
+// 4 x 4 samples.
+State paraboloid_at_rest(const Grid& g, double height, double radius);
 struct CreepResult {
     double front_shift = 0.0;   // outward move of the wet edge (h > 1e-3 H) (m)
     double radius_shift = 0.0;  // change of sqrt(6 var) (m), the spread of the paraboloid

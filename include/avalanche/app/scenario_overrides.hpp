@@ -29,6 +29,7 @@ struct ScenarioOverrides {
     std::optional<std::string> scheme;           // --scheme
     std::optional<std::string> limiter;          // --limiter
     std::optional<double> output_interval;       // --output-interval
+    bool rest_faces = false;                     // --rest-faces: numerics.rest_faces = true
     std::optional<std::string> quality;          // --quality draft|standard|fine (before the flags above)
 };
 

@@ -29,6 +29,9 @@ struct NumericsParams {
     double h_min = 0.0;          // thin-layer depth (m); 0 = automatic: h_min_relative * max release
     double h_min_relative = 1e-5;
     int source_substeps = 1;     // m in paper eq. 12
+    // Faces between cells friction holds at rest pass no mass while the static driving
+    // across them stays below the Coulomb limit (rest_faces.hpp; MODEL.md 2.4).
+    bool rest_faces = false;
     Boundary boundary = Boundary::open;
     double t_end = 300.0;        // s, hard end of the simulation
     double output_interval = 1.0;  // s between snapshots

@@ -22,6 +22,7 @@
 #include "avalanche/numerics/active_box.hpp"
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/parameters.hpp"
+#include "avalanche/numerics/rest_faces.hpp"
 #include "avalanche/physics/earth_pressure.hpp"
 #include "avalanche/physics/material.hpp"
 #include "avalanche/physics/terrain.hpp"
@@ -64,6 +65,11 @@ class Stepper {
     // the stepper keeps the flags in another form (regime_).
     [[nodiscard]] CellVector<RegimeFlags> regime() const;
     void set_regime(CellVector<RegimeFlags> r);
+    // With numerics.rest_faces: the cells the next advection counts as held at rest by
+    // friction (rest_faces.hpp; the state's layout; empty before the first friction
+    // stage). A restart from a checkpoint restores it, as the regimes.
+    [[nodiscard]] CellVector<HeldFlag> held_at_rest() const;
+    void set_held_at_rest(CellVector<HeldFlag> held);
     // The budget of a state: max over wet cells of
     //   |u|^2/2 + g (z_b + h_n g/g_n) + 2 k_max g_n h_n.
     [[nodiscard]] double energy_budget_of(const State& s) const;
@@ -87,7 +93,7 @@ class Stepper {
 
     // The operators, public for tests of the splitting.
     void advect(State& s, double tau);
-    void apply_sources(State& s, double dt) const;
+    void apply_sources(State& s, double dt);
     void fill_ghosts(State& s) const;  // every ghost cell
 
   private:
@@ -242,6 +248,18 @@ class Stepper {
     // flow reaches are ever touched (field_storage.hpp). Assigning kRegimeAtStart to
     // every cell at the first advection took 7 ms of benchmark (d)'s 79 ms run.
     CellVector<RegimeFlags> regime_;
+    // numerics.rest_faces (rest_faces.hpp): held_ marks the cells the last friction stage
+    // stopped; held_quiet_ those of them no mass entered or left in the advection after
+    // it, for the next step's first advection under L S L (the one after S reads held_).
+    // after_sources_: the last operator was the friction stage.
+    CellVector<HeldFlag> held_, held_quiet_;
+    bool after_sources_ = false;
+    // This advection's flags: those it reads (null: rest_faces off, or no friction stage
+    // yet) and those it writes (null: none).
+    const HeldFlag* rest_in_ = nullptr;
+    HeldFlag* rest_out_ = nullptr;
+    void hold_rest_faces(const State& s, const StripBuffers& w, const HeldFlag* held, bool x_faces,
+                         int r, int i0, int i1, double* fh, double* fn, double* ft) const;
 };
 
 }  // namespace avalanche

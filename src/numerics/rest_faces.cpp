@@ -1,0 +1,103 @@
+#include "avalanche/numerics/rest_faces.hpp"
+
+#include "simd_clones.hpp"
+
+namespace avalanche {
+
+namespace {
+
+// hold_rest_faces_row's loop with its branches turned into selections, so that it runs in
+// the vector units like the face kernels (face_flux_rows.cpp): every lane computes the test,
+// quotients of dry lanes included, and the flags select.
+template <bool Metric>
+AVALANCHE_SIMD_CLONES int hold_clone(const RestFaceRowInput& in, const RestFaceRowParams& p,
+                                     double* __restrict fh, double* __restrict fn,
+                                     double* __restrict ft, int f0, int f1) {
+    const double h_min = p.h_min, inv_dn = p.inv_dn, tan_delta = p.tan_delta;
+    const double* __restrict h_l = in.h_l;
+    const double* __restrict h_r = in.h_r;
+    const HeldFlag* __restrict held_l = in.held_l;
+    const HeldFlag* __restrict held_r = in.held_r;
+    int held = 0;
+#pragma omp simd reduction(+ : held)
+    for (int f = f0; f < f1; ++f) {
+        const double hl = h_l[f], hr = h_r[f];
+        const bool dry_l = !(hl >= h_min) | !(hl > 0.0), dry_r = !(hr >= h_min) | !(hr > 0.0);
+        // Both sides held or dry, and material on at least one: a face with a moving
+        // cell, or between two dry ones, keeps the scheme's flux.
+        const bool both_dry = dry_l & dry_r;
+        const bool candidate = !both_dry & (dry_l | (held_l[f] != 0)) & (dry_r | (held_r[f] != 0));
+        // The terrain of the material's side(s): a dry cell's slope does not act on it.
+        const double wl = dry_l ? 0.0 : (dry_r ? 1.0 : 0.5), wr = 1.0 - wl;
+        // The static driving acceleration across the face: gravity along the bed and the
+        // face's pressure gradient -(P_r - P_l) / (dn (h_l + h_r) / 2), P = c h^2 / 2 (for
+        // uniform c, -c dh/dn); along the face, gravity alone (the pressure gradients
+        // along it act on the faces across it).
+        const double pl = 0.5 * in.c_l[f] * hl * hl, pr = 0.5 * in.c_r[f] * hr * hr;
+        const double an =
+            wl * in.an_l[f] + wr * in.an_r[f] - (pr - pl) * inv_dn / (0.5 * (hl + hr));
+        const double at = wl * in.at_l[f] + wr * in.at_r[f];
+        double drive2 = an * an + at * at;
+        if constexpr (Metric) {
+            // In the DEM frame (horizontal velocity) the along-surface magnitude, as the
+            // friction stage measures the speed it stops (cell_rows.cpp).
+            const double w =
+                (wl * in.sn_l[f] + wr * in.sn_r[f]) * an + (wl * in.st_l[f] + wr * in.st_r[f]) * at;
+            drive2 += w * w;
+        }
+        const double limit = tan_delta * (wl * in.gn_l[f] + wr * in.gn_r[f]);
+        // Strictly below the limit: without friction (delta = 0) no face is held.
+        const bool hold = candidate & (drive2 < limit * limit);
+        fh[f] = hold ? 0.0 : fh[f];
+        ft[f] = hold ? 0.0 : ft[f];
+        fn[f] = hold ? 0.5 * (pl + pr) : fn[f];
+        held += hold ? 1 : 0;
+    }
+    return held;
+}
+
+AVALANCHE_SIMD_CLONES void keep_clone(const HeldFlag* __restrict held,
+                                      const double* __restrict fx_h, const double* __restrict fy_h,
+                                      std::ptrdiff_t stride, double* __restrict hu,
+                                      double* __restrict hv, int i0, int i1) {
+#pragma omp simd
+    for (int i = i0; i < i1; ++i) {
+        const bool quiet =
+            (fx_h[i] == 0.0) & (fx_h[i + 1] == 0.0) & (fy_h[i] == 0.0) & (fy_h[i + stride] == 0.0);
+        const bool still = quiet & (held[i] != 0);
+        hu[i] = still ? 0.0 : hu[i];
+        hv[i] = still ? 0.0 : hv[i];
+    }
+}
+
+}  // namespace
+
+int hold_rest_faces_row(const RestFaceRowInput& in, const RestFaceRowParams& p, double* fh,
+                        double* fn, double* ft, int f0, int f1) noexcept {
+    // Most rows of a moving flow hold no cell at rest: nothing to test there.
+    bool any = false;
+    for (int f = f0; f < f1 && !any; ++f) any = (in.held_l[f] | in.held_r[f]) != 0;
+    if (!any) return 0;
+    return in.sn_l != nullptr ? hold_clone<true>(in, p, fh, fn, ft, f0, f1)
+                              : hold_clone<false>(in, p, fh, fn, ft, f0, f1);
+}
+
+void keep_held_at_rest(const HeldFlag* held, const double* fx_h, const double* fy_h,
+                       std::ptrdiff_t stride, double* hu, double* hv, HeldFlag* held_next, int i0,
+                       int i1) noexcept {
+    keep_clone(held, fx_h, fy_h, stride, hu, hv, i0, i1);
+    if (held_next == nullptr) return;
+    for (int i = i0; i < i1; ++i) {
+        const bool quiet =
+            (fx_h[i] == 0.0) & (fx_h[i + 1] == 0.0) & (fy_h[i] == 0.0) & (fy_h[i + stride] == 0.0);
+        held_next[i] = quiet & (held[i] != 0) ? 1 : 0;
+    }
+}
+
+void held_at_rest_row(const double* h, const double* hu, const double* hv, double h_min,
+                      HeldFlag* held, int i0, int i1) noexcept {
+    for (int i = i0; i < i1; ++i)
+        held[i] = (h[i] >= h_min) & (h[i] > 0.0) & (hu[i] == 0.0) & (hv[i] == 0.0) ? 1 : 0;
+}
+
+}  // namespace avalanche
