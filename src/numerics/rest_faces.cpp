@@ -1,5 +1,7 @@
 #include "avalanche/numerics/rest_faces.hpp"
 
+#include <vector>
+
 #include "simd_clones.hpp"
 
 namespace avalanche {
@@ -9,24 +11,38 @@ namespace {
 // hold_rest_faces_row's loop with its branches turned into selections, so that it runs in
 // the vector units like the face kernels (face_flux_rows.cpp): every lane computes the test,
 // quotients of dry lanes included, and the flags select.
+// Whether a cell counts as dry for the test: thinner than h_min (or empty).
+AVALANCHE_INLINE bool dry(double h, double h_min) { return !(h >= h_min) | !(h > 0.0); }
+
+// The faces that may be held (candidate[f] = 1): both sides held or dry, and material on
+// at least one; a face with a moving cell, or between two dry ones, keeps the scheme's
+// flux. A plain loop over the flags, whose bytes the AVX-512F version of a vector loop
+// could not mix with doubles (no byte vectors without AVX-512BW): the vector loop below
+// reads the result as doubles. Returns whether any face is a candidate.
+bool candidate_faces(const RestFaceRowInput& in, double h_min, double* candidate, int f0, int f1) {
+    bool any = false;
+    for (int f = f0; f < f1; ++f) {
+        const bool dry_l = dry(in.h_l[f], h_min), dry_r = dry(in.h_r[f], h_min);
+        const bool c =
+            !(dry_l && dry_r) && (dry_l || in.held_l[f] != 0) && (dry_r || in.held_r[f] != 0);
+        candidate[f] = c ? 1.0 : 0.0;
+        any = any || c;
+    }
+    return any;
+}
+
 template <bool Metric>
 AVALANCHE_SIMD_CLONES int hold_clone(const RestFaceRowInput& in, const RestFaceRowParams& p,
-                                     double* __restrict fh, double* __restrict fn,
-                                     double* __restrict ft, int f0, int f1) {
+                                     const double* __restrict candidate, double* __restrict fh,
+                                     double* __restrict fn, double* __restrict ft, int f0, int f1) {
     const double h_min = p.h_min, inv_dn = p.inv_dn, tan_delta = p.tan_delta;
     const double* __restrict h_l = in.h_l;
     const double* __restrict h_r = in.h_r;
-    const HeldFlag* __restrict held_l = in.held_l;
-    const HeldFlag* __restrict held_r = in.held_r;
     int held = 0;
 #pragma omp simd reduction(+ : held)
     for (int f = f0; f < f1; ++f) {
         const double hl = h_l[f], hr = h_r[f];
-        const bool dry_l = !(hl >= h_min) | !(hl > 0.0), dry_r = !(hr >= h_min) | !(hr > 0.0);
-        // Both sides held or dry, and material on at least one: a face with a moving
-        // cell, or between two dry ones, keeps the scheme's flux.
-        const bool both_dry = dry_l & dry_r;
-        const bool candidate = !both_dry & (dry_l | (held_l[f] != 0)) & (dry_r | (held_r[f] != 0));
+        const bool dry_l = dry(hl, h_min), dry_r = dry(hr, h_min);
         // The terrain of the material's side(s): a dry cell's slope does not act on it.
         const double wl = dry_l ? 0.0 : (dry_r ? 1.0 : 0.5), wr = 1.0 - wl;
         // The static driving acceleration across the face: gravity along the bed and the
@@ -47,7 +63,7 @@ AVALANCHE_SIMD_CLONES int hold_clone(const RestFaceRowInput& in, const RestFaceR
         }
         const double limit = tan_delta * (wl * in.gn_l[f] + wr * in.gn_r[f]);
         // Strictly below the limit: without friction (delta = 0) no face is held.
-        const bool hold = candidate & (drive2 < limit * limit);
+        const bool hold = (candidate[f] != 0.0) & (drive2 < limit * limit);
         fh[f] = hold ? 0.0 : fh[f];
         ft[f] = hold ? 0.0 : ft[f];
         fn[f] = hold ? 0.5 * (pl + pr) : fn[f];
@@ -74,12 +90,13 @@ AVALANCHE_SIMD_CLONES void keep_clone(const HeldFlag* __restrict held,
 
 int hold_rest_faces_row(const RestFaceRowInput& in, const RestFaceRowParams& p, double* fh,
                         double* fn, double* ft, int f0, int f1) noexcept {
+    thread_local std::vector<double> candidate;
+    if (candidate.size() < static_cast<std::size_t>(f1))
+        candidate.resize(static_cast<std::size_t>(f1));
     // Most rows of a moving flow hold no cell at rest: nothing to test there.
-    bool any = false;
-    for (int f = f0; f < f1 && !any; ++f) any = (in.held_l[f] | in.held_r[f]) != 0;
-    if (!any) return 0;
-    return in.sn_l != nullptr ? hold_clone<true>(in, p, fh, fn, ft, f0, f1)
-                              : hold_clone<false>(in, p, fh, fn, ft, f0, f1);
+    if (!candidate_faces(in, p.h_min, candidate.data(), f0, f1)) return 0;
+    return in.sn_l != nullptr ? hold_clone<true>(in, p, candidate.data(), fh, fn, ft, f0, f1)
+                              : hold_clone<false>(in, p, candidate.data(), fh, fn, ft, f0, f1);
 }
 
 void keep_held_at_rest(const HeldFlag* held, const double* fx_h, const double* fy_h,
