@@ -159,6 +159,7 @@ Scene make_scene(const Case& c) {
     s.numerics.scheme = c.scheme;
     s.numerics.cfl = c.cfl;
     s.numerics.splitting = c.splitting;
+    s.numerics.rest_faces = c.rest_faces;
     s.numerics.h_min = c.h_min;
     build(s, c);
     s.numerics.output_interval = s.numerics.t_end;

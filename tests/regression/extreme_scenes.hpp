@@ -34,6 +34,7 @@ struct Case {
     double h_min = 0.0;  // numerics.h_min (0: automatic, 1e-5 x h0)
     double cfl = 0.2;
     Splitting splitting = Splitting::lsl;
+    bool rest_faces = false;  // numerics.rest_faces
     int n = 24;       // cells along x (y: kind-dependent)
     double u0 = 0.0;  // initial speed of moving releases (m/s)
     Scheme scheme = Scheme::waf;

@@ -189,6 +189,43 @@ std::vector<Case> matrix() {
                 c.u0 = u0;
                 add(c, "collision_flat_u" + tag(u0));
             }
+            // numerics.rest_faces where cells come to rest beside moving ones: a deposit on
+            // a gentle plane, the steepest and most frictional, a deep release, a pile-up
+            // against a cliff, two flows colliding, and S L S at Courant 0.5.
+            {
+                const auto held = [&](Case c, const std::string& name) {
+                    c.rest_faces = true;
+                    add(c, name + "_rest_faces");
+                };
+                Case c;
+                c.kind = Kind::plane_dem;
+                for (double slope : {0.0, 15.0, 80.0}) {
+                    c.slope_deg = slope;
+                    held(c, "dem_plane_slope" + tag(slope));
+                }
+                Case f;
+                f.slope_deg = 35.0;
+                f.delta_deg = 45.0;
+                f.phi_deg = 50.0;
+                held(f, "friction_delta45_phi50");
+                Case deep;
+                deep.slope_deg = 35.0;
+                deep.h0 = 200.0;
+                held(deep, "release_h200");
+                Case cliff;
+                cliff.kind = Kind::cliff_up;
+                cliff.h0 = 5.0;
+                cliff.u0 = 30.0;
+                held(cliff, "cliff_wall_ahead");
+                Case hit;
+                hit.kind = Kind::collision_flat;
+                hit.n = 40;
+                hit.u0 = 5.0;
+                held(hit, "collision_flat_u5");
+                hit.cfl = 0.5;
+                hit.splitting = Splitting::sls;
+                held(hit, "collision_flat_u5_cfl_0p5_sls");
+            }
             for (double slope : {30.0, 60.0}) {
                 Case c;
                 c.kind = Kind::collision_valley;
