@@ -569,11 +569,13 @@ void Stepper::advect(State& s, double tau) {
         } else {
             // Before any friction stage (the first advection of an L S L run): the cells at
             // rest, as the friction stage would hold them where the faces' test passes.
+            // Only the box's: it holds every wet cell, and the state beyond it is left
+            // unread (on a large DEM its pages stay unmade, field_storage.hpp).
             if (held_quiet_.size() != n) {
                 held_quiet_ = CellVector<HeldFlag>(n);
-                for (int j = 0; j < grid_.ny; ++j)
+                for (int j = b.j0; j < b.j1; ++j)
                     held_at_rest_row(s.h.row(j), s.hu.row(j), s.hv.row(j), h_min_,
-                                     held_quiet_.data() + s.h.index(0, j), 0, grid_.nx);
+                                     held_quiet_.data() + s.h.index(0, j), b.i0, b.i1);
             }
             rest_in_ = held_quiet_.data();
         }
