@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -28,6 +29,7 @@ constexpr SweepParameter kParameters[] = {
     {"t_end", "t_end", true, false},
     {"scheme", "scheme", false, false},
     {"earth_pressure", "earth_pressure", false, false},
+    {"rest_faces", "rest_faces", false, false},
     {"thickness", "thickness", true, true},
     {"volume", "volume", true, true},
 };
@@ -220,6 +222,7 @@ std::vector<BatchCase> read_case_table(const std::string& path) {
 
 Scenario scenario_for_case(const Scenario& base, const BatchCase& c) {
     ScenarioOverrides o;
+    std::optional<bool> rest_faces;  // numerics.rest_faces (the run flag can only set it)
     for (const auto& [p, v] : c.values) {
         const std::string name = p->name;
         const double x = p->numeric ? std::strtod(v.c_str(), nullptr) : 0.0;
@@ -241,10 +244,17 @@ Scenario scenario_for_case(const Scenario& base, const BatchCase& c) {
             o.thickness = x;
         else if (name == "volume")
             o.volume = x;
+        else if (name == "rest_faces") {
+            if (v != "true" && v != "false")
+                throw ConfigError("scenario " + c.id,
+                                  "rest_faces: expected true or false, got \"" + v + "\"");
+            rest_faces = v == "true";
+        }
     }
     Scenario s = base;
     try {
         apply_overrides(s, o);
+        if (rest_faces) s.numerics.rest_faces = *rest_faces;
         validate(s);
     } catch (const ConfigError& e) {
         throw ConfigError("scenario " + c.id, e.what());

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "avalanche/app/batch_plan.hpp"
+#include "avalanche/app/scenario_overrides.hpp"
 #include "avalanche/core/error.hpp"
 #include "batch_test_support.hpp"
 
@@ -69,6 +70,28 @@ TEST(BatchSweep, TableRowsBecomeCases) {
     EXPECT_THROW(read_case_table(dir.write("u.csv", "delta,grain\n20,1\n")), ConfigError);
     EXPECT_THROW(read_case_table(dir.write("r.csv", "delta,phi\n20\n")), InputError);
     EXPECT_THROW(read_case_table(dir.write("d.csv", "delta\n20\n20.0\n")), ConfigError);
+}
+
+TEST(BatchSweep, RestFacesTakesTrueOrFalseOverTheBase) {
+    test::ScratchDir dir("batch-rest-faces");
+    std::string toml = test::kCoarseParametricChute;
+    toml.replace(toml.find("[numerics]\n"), 11, "[numerics]\nrest_faces = true\n");
+    const Scenario base = assemble_scenario(dir.write("base.toml", toml), {});
+    ASSERT_TRUE(base.numerics.rest_faces);
+    const auto cases = cartesian_product({parse_sweep("rest_faces=false,true")});
+    ASSERT_EQ(cases.size(), 2u);
+    EXPECT_EQ(cases[0].id, "rest_faces=false");
+    EXPECT_FALSE(scenario_for_case(base, cases[0]).numerics.rest_faces);
+    EXPECT_TRUE(scenario_for_case(base, cases[1]).numerics.rest_faces);
+    EXPECT_EQ(scene_key(cases[0]), "");  // numerics only: the base scene is shared
+    const auto bad = cartesian_product({parse_sweep("rest_faces=yes")});
+    try {
+        scenario_for_case(base, bad[0]);
+        ADD_FAILURE() << "rest_faces=yes accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "scenario rest_faces=yes: rest_faces: expected true or false, got \"yes\"");
+    }
 }
 
 TEST(BatchSweep, CommandRefusesBadSweepsWithExitTwoAndWritesNothing) {

@@ -17,7 +17,7 @@ namespace avalanche {
 struct SweepParameter {
     const char* name;    // as in --sweep: "delta"
     const char* column;  // "delta_deg"
-    bool numeric;        // false: a choice (scheme, earth_pressure), lists only
+    bool numeric;        // false: a choice (scheme, earth_pressure, rest_faces), lists only
     bool changes_scene;
 };
 
