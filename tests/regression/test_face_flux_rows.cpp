@@ -84,8 +84,14 @@ Conserved at(const Block& b, std::ptrdiff_t k) { return {b.h[k], b.qn[k], b.qt[k
 template <class RowKernel, class Reference>
 long compare(const Block& b, RowKernel row, Reference reference) {
     long faces = 0;
+    // Assigned in the loop, not made there: GCC 12 took the vectors made inside this loop
+    // over an initializer list for a non-heap object (-Wfree-nonheap-object, a false
+    // positive).
+    std::vector<double> fh, fq, ft;
     for (const std::ptrdiff_t off : {std::ptrdiff_t{1}, static_cast<std::ptrdiff_t>(b.width)}) {
-        std::vector<double> fh(b.h.size(), -1.0), fq(b.h.size(), -1.0), ft(b.h.size(), -1.0);
+        fh.assign(b.h.size(), -1.0);
+        fq.assign(b.h.size(), -1.0);
+        ft.assign(b.h.size(), -1.0);
         for (int r = 2; r < b.rows + 2; ++r) {
             const std::ptrdiff_t k0 = static_cast<std::ptrdiff_t>(r) * b.width + 2;
             const int n = b.width - 3;  // faces k0 .. k0 + n - 1 keep k - 2, k + 1 in the row
