@@ -216,3 +216,33 @@ TEST(RestFaces, ResumedFromACheckpointEndsAsTheUninterruptedRun) {
         }
     }
 }
+
+// The flags are read and written strip by strip like the rest of the advection
+// (advection.cpp): a steep pile (R = 6 m, H = 3 m) while its deposit forms, held cells
+// beside moving ones, its active box above the stepper's threading threshold, gives
+// the same state and the same flags on one, two and three threads.
+TEST(RestFaces, OneTwoAndThreeThreadsGiveTheSameBits) {
+    const Grid g = box_grid(-14.0, 14.0, -14.0, 14.0, 0.25);
+    const TerrainFields terrain = plane_terrain(g, 0.0, kG);
+    const MaterialParams mat = material(EarthPressureModel::isotropic, 35.0, 20.0);
+    NumericsParams n = numerics(Scheme::waf, Splitting::lsl, true);
+    n.boundary = Boundary::wall;
+    const State start = paraboloid_at_rest(g, 3.0, 6.0);
+    const auto run = [&](int threads) {
+        const ScopedThreads scoped(threads);
+        State s = start;
+        Stepper stepper(g, terrain, mat, n, effective_h_min(n, s, terrain));
+        advance_to(stepper, s, 0.0, 2.0);  // measured: 880 cells held, 4 928 moving
+        EXPECT_GT(stepper.active_box().cells(), Stepper::kMinCellsPerThreadedStep);
+        return std::pair{s, stepper.held_at_rest()};
+    };
+    const auto [one, held_one] = run(1);
+    EXPECT_GT(std::count(held_one.begin(), held_one.end(), 1), 100);
+    for (int threads : {2, 3}) {
+        const auto [many, held_many] = run(threads);
+        EXPECT_TRUE(many.h.raw() == one.h.raw() && many.hu.raw() == one.hu.raw() &&
+                    many.hv.raw() == one.hv.raw())
+            << threads << " threads";
+        EXPECT_TRUE(held_many == held_one) << threads << " threads";
+    }
+}
