@@ -32,13 +32,6 @@ NumericsParams numerics(Scheme s, Splitting sp, bool rest_faces) {
     return n;
 }
 
-double volume(const State& s, const Grid& g) {
-    long double v = 0.0L;
-    for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) v += s.h(i, j);
-    return static_cast<double>(v) * g.cell_area();
-}
-
 bool all_at_rest(const State& s, const Grid& g) {
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i)
@@ -65,8 +58,7 @@ double reach(const State& s, const Grid& g, double level) {
     double r = 0.0;
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i)
-            if (s.h(i, j) > level)
-                r = std::max(r, std::hypot(g.x0 + (i + 0.5) * g.dx, g.y0 + (j + 0.5) * g.dy));
+            if (s.h(i, j) > level) r = std::max(r, std::hypot(g.x_center(i), g.y_center(j)));
     return r;
 }
 
@@ -108,7 +100,7 @@ TEST(RestFaces, SteepPileCollapsesToTheCoulombLimitAndStays) {
     const double tan_delta = std::tan(20.0 * std::numbers::pi / 180.0);
     for (Scheme scheme : {Scheme::waf, Scheme::godunov}) {
         const State start = paraboloid_at_rest(g, 2.0, 4.0);
-        const double v0 = volume(start, g);
+        const double v0 = depth_moments(start, g).volume;
         double reach_default = 0.0, reach_held = 0.0;
         for (bool rest : {false, true}) {
             NumericsParams n = numerics(scheme, Splitting::lsl, rest);
@@ -118,12 +110,12 @@ TEST(RestFaces, SteepPileCollapsesToTheCoulombLimitAndStays) {
             advance_to(stepper, s, 0.0, 1.0);
             const double level = 1e-3;
             (rest ? reach_held : reach_default) = reach(s, g, level);
-            EXPECT_NEAR(volume(s, g), v0, 1e-12 * v0);
+            EXPECT_NEAR(depth_moments(s, g).volume, v0, 1e-12 * v0);
             if (!rest) continue;
             advance_to(stepper, s, 1.0, 12.0);
             EXPECT_TRUE(all_at_rest(s, g)) << "scheme " << static_cast<int>(scheme);
             EXPECT_LT(steepest_step(s, g, stepper.h_min()), tan_delta);
-            EXPECT_NEAR(volume(s, g), v0, 1e-12 * v0);
+            EXPECT_NEAR(depth_moments(s, g).volume, v0, 1e-12 * v0);
             const State deposit = s;
             advance_to(stepper, s, 12.0, 15.0);
             EXPECT_TRUE(s.h.raw() == deposit.h.raw()) << "the deposit moved";
