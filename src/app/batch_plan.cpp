@@ -222,7 +222,6 @@ std::vector<BatchCase> read_case_table(const std::string& path) {
 
 Scenario scenario_for_case(const Scenario& base, const BatchCase& c) {
     ScenarioOverrides o;
-    std::optional<bool> rest_faces;  // numerics.rest_faces (the run flag can only set it)
     for (const auto& [p, v] : c.values) {
         const std::string name = p->name;
         const double x = p->numeric ? std::strtod(v.c_str(), nullptr) : 0.0;
@@ -245,16 +244,15 @@ Scenario scenario_for_case(const Scenario& base, const BatchCase& c) {
         else if (name == "volume")
             o.volume = x;
         else if (name == "rest_faces") {
-            if (v != "true" && v != "false")
+            o.rest_faces = parse_switch(v);
+            if (!o.rest_faces)
                 throw ConfigError("scenario " + c.id,
-                                  "rest_faces: expected true or false, got \"" + v + "\"");
-            rest_faces = v == "true";
+                                  std::string("rest_faces: ") + kSwitchExpected + ", got \"" + v + "\"");
         }
     }
     Scenario s = base;
     try {
         apply_overrides(s, o);
-        if (rest_faces) s.numerics.rest_faces = *rest_faces;
         validate(s);
     } catch (const ConfigError& e) {
         throw ConfigError("scenario " + c.id, e.what());

@@ -83,10 +83,19 @@ void add_scenario_flags(CLI::App& cmd, ScenarioOverrides& o) {
                  enum_name(kLimiterNames, n.limiter));
     add_override(cmd, "--output-interval", o.output_interval, "Time between snapshots (s)",
                  text(n.output_interval));
-    cmd.add_flag("--rest-faces", o.rest_faces,
-                 "Faces between cells friction holds at rest pass no mass while below the "
-                 "Coulomb limit: deposits stay put instead of creeping (numerics.rest_faces; "
-                 "docs/numerics.md)")
+    // A switch with its negation, so that a run can turn off what its scenario file
+    // turns on; --rest-faces=true|false as batch sweeps spell it.
+    cmd.add_flag("--rest-faces,!--no-rest-faces")
+        ->description(
+            "Faces between cells friction holds at rest pass no mass while below the "
+            "Coulomb limit: deposits stay put instead of creeping (numerics.rest_faces; "
+            "docs/numerics.md)")
+        ->each([&o](const std::string& v) {
+            o.rest_faces = parse_switch(v);
+            // CLI11 names the flag and passes on only its own errors.
+            if (!o.rest_faces)
+                throw CLI::ValidationError(std::string(kSwitchExpected) + ", got \"" + v + "\"");
+        })
         ->group(kOverrideGroup);
     add_override(cmd, "--quality", o.quality,
                  "Speed/accuracy preset: draft|standard|fine (docs/performance.md); "

@@ -103,6 +103,12 @@ std::optional<std::string> flag_for_key(const std::string& key, const ScenarioOv
 
 }  // namespace
 
+std::optional<bool> parse_switch(const std::string& value) {
+    if (value == "true") return true;
+    if (value == "false") return false;
+    return std::nullopt;
+}
+
 void apply_overrides(Scenario& s, const ScenarioOverrides& o) {
     if (!o.dem.empty()) {
         DemTerrainSpec dem;
@@ -137,7 +143,7 @@ void apply_overrides(Scenario& s, const ScenarioOverrides& o) {
     if (o.scheme) s.numerics.scheme = parse_choice(kSchemeNames, *o.scheme, "--scheme");
     if (o.limiter) s.numerics.limiter = parse_choice(kLimiterNames, *o.limiter, "--limiter");
     if (o.output_interval) s.numerics.output_interval = *o.output_interval;
-    if (o.rest_faces) s.numerics.rest_faces = true;
+    if (o.rest_faces) s.numerics.rest_faces = *o.rest_faces;
 }
 
 Scenario assemble_scenario(const std::optional<std::string>& scenario_file,

@@ -154,5 +154,35 @@ TEST(RunInProcess, ErrorsReturnTheirExitCodeAndDebugLetsThemEscape) {
     EXPECT_THROW(run_cli(debug_args), std::runtime_error);
 }
 
+// --rest-faces is a switch with a negation, so a run can turn off what its scenario file
+// turns on; --rest-faces=true|false also, any other value is refused before anything runs.
+TEST(RunInProcess, RestFacesSwitchTurnsTheFilesSettingOnOrOff) {
+    test::ScratchDir dir("rest-faces-switch");
+    std::string toml = test::kSmallChute;
+    toml.replace(toml.find("[numerics]\n"), 11, "[numerics]\nrest_faces = true\n");
+    const std::string scenario = dir.write("scenario.toml", toml);
+    const auto run_with = [&](const std::string& flag, const std::string& name) {
+        const std::string out = dir.file(name);
+        std::vector<std::string> args{"avalanche-hazard", "run",   "--scenario", scenario,
+                                      "--out",            out,     "--quiet",    "--t-end",
+                                      "0.05",             "--threads", "1"};
+        if (!flag.empty()) args.push_back(flag);
+        EXPECT_EQ(run_cli(args), 0) << flag;
+        return read_json(out + "/summary.json")["parameters"]["numerics"]["rest_faces"];
+    };
+    EXPECT_EQ(run_with("", "file"), true);
+    EXPECT_EQ(run_with("--no-rest-faces", "off"), false);
+    EXPECT_EQ(run_with("--rest-faces=false", "off_value"), false);
+    EXPECT_EQ(run_with("--rest-faces=true", "on_value"), true);
+
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(run_cli({"avalanche-hazard", "run", "--scenario", scenario, "--out",
+                       dir.file("bad"), "--rest-faces=yes"}),
+              2);
+    EXPECT_EQ(testing::internal::GetCapturedStderr(),
+              "avalanche-hazard: error: --rest-faces: expected true or false, got \"yes\"\n");
+    EXPECT_FALSE(std::filesystem::exists(dir.file("bad")));
+}
+
 }  // namespace
 }  // namespace avalanche

@@ -29,9 +29,14 @@ struct ScenarioOverrides {
     std::optional<std::string> scheme;           // --scheme
     std::optional<std::string> limiter;          // --limiter
     std::optional<double> output_interval;       // --output-interval
-    bool rest_faces = false;                     // --rest-faces: numerics.rest_faces = true
+    std::optional<bool> rest_faces;              // --rest-faces / --no-rest-faces
     std::optional<std::string> quality;          // --quality draft|standard|fine (before the flags above)
 };
+
+// "true" or "false" (an on/off switch given a value: --rest-faces=false, or a batch
+// sweep's value); nothing for any other text, which kSwitchExpected describes.
+std::optional<bool> parse_switch(const std::string& value);
+inline constexpr const char* kSwitchExpected = "expected true or false";
 
 // Applies the flags; throws ConfigError naming the flag for a bad choice or a flag that
 // does not fit the scenario (e.g. --thickness on a cap).
