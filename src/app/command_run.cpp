@@ -150,14 +150,15 @@ int run_scene(TimedScene&& prepared, const Scenario& scenario, const std::string
                   << "/{max_depth,max_velocity,max_pressure,arrival_time,deposit_thickness,"
                      "hazard_class}.tif (open in QGIS; styles beside them)\nreport: "
                   << dir << "/report.html (the planner's report, opens offline; also report.md)"
-                  << "\nresults: " << outcome.results_path
-                  << "\nsummary: " << outcome.summary_path << "\n";
+                  << "\nresults: " << outcome.results_path << "\nsummary: " << outcome.summary_path
+                  << "\n";
     }
     if (outcome.stats.end_reason == EndReason::interrupted)
         throw Error(ExitCode::interrupted,
                     "interrupted at t = " + std::to_string(outcome.stats.simulated_time) +
-                        " s; the results so far are in " + out + " (marked incomplete); continue with " +
-                        "avalanche-hazard run --resume " + out);
+                        " s; the results so far are in " + out +
+                        " (marked incomplete); continue with " + "avalanche-hazard run --resume " +
+                        out);
     return 0;
 }
 
@@ -168,10 +169,13 @@ void set_threads(int threads) {
 #endif
 }
 
-int execute_new_run(const RunArguments& args, const GlobalOptions& global, double checkpoint_interval) {
-    if (args.out.empty()) throw ConfigError("--out", "required: the output folder (or --resume DIR)");
+int execute_new_run(const RunArguments& args, const GlobalOptions& global,
+                    double checkpoint_interval) {
+    if (args.out.empty())
+        throw ConfigError("--out", "required: the output folder (or --resume DIR)");
     if (!(checkpoint_interval >= 0.0) || !std::isfinite(checkpoint_interval))
-        throw ConfigError("--checkpoint-interval", "expected a positive number of simulated seconds");
+        throw ConfigError("--checkpoint-interval",
+                          "expected a positive number of simulated seconds");
     const Scenario scenario = assemble_scenario(args.scenario, args.overrides);
     spdlog::debug("effective configuration: {}", effective_config(scenario).dump());
     set_threads(args.threads);
@@ -185,11 +189,13 @@ int execute_new_run(const RunArguments& args, const GlobalOptions& global, doubl
 // and must record the very same paths in its outputs.
 class WorkingDirectory {
   public:
-    WorkingDirectory(const std::string& dir, const std::string& checkpoint) : old_(std::filesystem::current_path()) {
+    WorkingDirectory(const std::string& dir, const std::string& checkpoint)
+        : old_(std::filesystem::current_path()) {
         std::error_code ec;
         std::filesystem::current_path(dir, ec);
         if (ec)
-            throw InputError(checkpoint, "the run started in " + dir + ", which is gone (" + ec.message() +
+            throw InputError(checkpoint, "the run started in " + dir + ", which is gone (" +
+                                             ec.message() +
                                              "); its relative input paths cannot be found");
     }
     ~WorkingDirectory() {
@@ -205,17 +211,20 @@ class WorkingDirectory {
 
 int execute_resume(const std::string& dir, int threads, const GlobalOptions& global) {
     const std::string out = std::filesystem::absolute(dir).lexically_normal().string();
-    const CheckpointContents checkpoint = read_checkpoint((std::filesystem::path(out) / "checkpoint.h5").string());
+    const CheckpointContents checkpoint =
+        read_checkpoint((std::filesystem::path(out) / "checkpoint.h5").string());
     WorkingDirectory cd(checkpoint.info.working_dir, checkpoint.path);
     Scenario scenario;
     try {
         scenario = scenario_from_config(checkpoint.info.config, checkpoint.path);
     } catch (const ConfigError& e) {
-        throw InputError(checkpoint.path, std::string("the recorded configuration is invalid: ") + e.what());
+        throw InputError(checkpoint.path,
+                         std::string("the recorded configuration is invalid: ") + e.what());
     }
     if (config_hash(effective_config(scenario)) != checkpoint.info.config_hash)
         throw InputError(checkpoint.path, "the recorded configuration does not match its hash " +
-                                              checkpoint.info.config_hash + " (corrupt checkpoint?)");
+                                              checkpoint.info.config_hash +
+                                              " (corrupt checkpoint?)");
     // The version is the same for every commit; the source hash tells two builds apart.
     if (checkpoint.info.source_hash != source_hash())
         throw InputError(checkpoint.path,
@@ -244,7 +253,8 @@ Command add_run_command(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option_function<std::string>(
         "--scenario", [args](const std::string& v) { args->scenario = v; },
         "Scenario file (TOML); its paths are relative to its folder");
-    cmd->add_option("--out", args->out, "Output folder (created if missing); required unless --resume");
+    cmd->add_option("--out", args->out,
+                    "Output folder (created if missing); required unless --resume");
     cmd->add_flag("--overwrite", args->overwrite, "Replace results already in the output folder");
     cmd->add_option("--threads", args->threads, "OpenMP threads (default: all cores)")
         ->check(CLI::PositiveNumber);
@@ -269,12 +279,15 @@ Command add_run_command(CLI::App& app, const GlobalOptions& global) {
         "problem, 5 numerical failure, 6 interrupted, 70 internal error (docs/cli.md).");
     // clang-format on
     return [args, checkpoints, cmd, &global] {
-        if (checkpoints->resume.empty()) return execute_new_run(*args, global, checkpoints->interval);
+        if (checkpoints->resume.empty())
+            return execute_new_run(*args, global, checkpoints->interval);
         // A resumed run is the recorded run: nothing else may change it.
         for (const CLI::Option* opt : cmd->get_options())
             if (opt->count() > 0 && opt->get_name() != "--resume" && opt->get_name() != "--threads")
-                throw ConfigError("--resume", "takes only --threads; the parameters are those recorded in " +
-                                                  checkpoints->resume + "/checkpoint.h5 (got " + opt->get_name() + ")");
+                throw ConfigError(
+                    "--resume", "takes only --threads; the parameters are those recorded in " +
+                                    checkpoints->resume + "/checkpoint.h5 (got " + opt->get_name() +
+                                    ")");
         return execute_resume(checkpoints->resume, args->threads, global);
     };
 }

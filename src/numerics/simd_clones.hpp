@@ -7,7 +7,7 @@
 // sqrt are exactly rounded and the core layer is built without FMA contraction.
 // Other compilers (the clang sanitizer and fuzzing builds) get the portable version.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(AVALANCHE_NO_CLONES)
-#define AVALANCHE_SIMD_CLONES __attribute__((target_clones("default", "avx2", "avx512f")))
+#define AVALANCHE_SIMD_CLONES __attribute__((target_clones("default", "avx2", "arch=x86-64-v4")))
 #else
 #define AVALANCHE_SIMD_CLONES
 #endif

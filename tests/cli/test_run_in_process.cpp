@@ -38,7 +38,8 @@ TEST(RunInProcess, SummaryHasEveryKeyAndAnExactMassBalance) {
     const auto started = std::chrono::steady_clock::now();
     ASSERT_EQ(run_cli({"avalanche-hazard", "run", "--scenario", scenario, "--out", out, "--quiet"}),
               0);
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const auto s = read_json(out + "/summary.json");
     // The wall time of each phase, in the order they ran; the solver's phase holds the
     // time loop (wall_s), and all of them fit in the command's own time.
@@ -163,9 +164,9 @@ TEST(RunInProcess, RestFacesSwitchTurnsTheFilesSettingOnOrOff) {
     const std::string scenario = dir.write("scenario.toml", toml);
     const auto run_with = [&](const std::string& flag, const std::string& name) {
         const std::string out = dir.file(name);
-        std::vector<std::string> args{"avalanche-hazard", "run",   "--scenario", scenario,
-                                      "--out",            out,     "--quiet",    "--t-end",
-                                      "0.05",             "--threads", "1"};
+        std::vector<std::string> args{
+            "avalanche-hazard", "run",     "--scenario", scenario,    "--out", out,
+            "--quiet",          "--t-end", "0.05",       "--threads", "1"};
         if (!flag.empty()) args.push_back(flag);
         EXPECT_EQ(run_cli(args), 0) << flag;
         return read_json(out + "/summary.json")["parameters"]["numerics"]["rest_faces"];
@@ -176,8 +177,8 @@ TEST(RunInProcess, RestFacesSwitchTurnsTheFilesSettingOnOrOff) {
     EXPECT_EQ(run_with("--rest-faces=true", "on_value"), true);
 
     testing::internal::CaptureStderr();
-    EXPECT_EQ(run_cli({"avalanche-hazard", "run", "--scenario", scenario, "--out",
-                       dir.file("bad"), "--rest-faces=yes"}),
+    EXPECT_EQ(run_cli({"avalanche-hazard", "run", "--scenario", scenario, "--out", dir.file("bad"),
+                       "--rest-faces=yes"}),
               2);
     EXPECT_EQ(testing::internal::GetCapturedStderr(),
               "avalanche-hazard: error: --rest-faces: expected true or false, got \"yes\"\n");

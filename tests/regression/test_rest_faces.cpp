@@ -106,6 +106,28 @@ TEST(RestFaceRows, TheDemFramesSurfaceSlopeAddsToTheDriving) {
     }
 }
 
+// A long row between moving cells with three candidates scattered over it (the kernel
+// skips stretches without one): each is tested as alone, every other face kept, at the
+// row's first and last faces too, and from an offset start.
+TEST(RestFaceRows, ScatteredCandidatesInALongRowAreEachTested) {
+    for (const int first : {0, 5}) {
+        Faces f;
+        for (int k = 0; k < 101; ++k) f.add(1.0, 1.2, false, false);
+        for (const int k : {first, 40, 100}) f.held_l[k] = f.held_r[k] = 1;
+        f.h_r[40] = 1.6;  // beyond the limit (face 1 of the first test)
+        const RestFaceRowInput in{f.h_l.data(), f.h_r.data(), f.held_l.data(), f.held_r.data(),
+                                  f.c.data(),   f.c.data(),   f.an_l.data(),   f.an_r.data(),
+                                  f.at.data(),  f.at.data(),  f.gn.data(),     f.gn.data(),
+                                  nullptr,      nullptr,      nullptr,         nullptr};
+        EXPECT_EQ(hold_rest_faces_row(in, {1.0, 0.5, 1e-6}, f.fh.data(), f.fn.data(), f.ft.data(),
+                                      first, 101),
+                  2);
+        for (int k = 0; k < 101; ++k)
+            EXPECT_EQ(f.held(static_cast<std::size_t>(k)), k == first || k == 100) << k;
+        EXPECT_DOUBLE_EQ(f.fn[100], 0.5 * (5.0 + 7.2));
+    }
+}
+
 TEST(RestFaceRows, AHeldCellStaysAtRestOnlyIfNoMassCrossedItsFaces) {
     // Three cells of a row (and the rows above and below through the y-faces): cell 0
     // held, all faces quiet; cell 1 held, mass through its upper y-face; cell 2 not held.
@@ -121,6 +143,13 @@ TEST(RestFaceRows, AHeldCellStaysAtRestOnlyIfNoMassCrossedItsFaces) {
     EXPECT_EQ(hu, (std::vector<double>{0.0, 0.3, 0.3}));
     EXPECT_EQ(hv, (std::vector<double>{0.0, -0.1, -0.1}));
     EXPECT_EQ(next, (std::vector<HeldFlag>{1, 0, 0}));
+    // Without the next advection's flags (a friction stage comes between), the same.
+    hu.assign(3, 0.3);
+    hv.assign(3, -0.1);
+    keep_held_at_rest(held.data(), fx_h.data(), fy_h.data(), kStride, hu.data(), hv.data(), nullptr,
+                      0, 3);
+    EXPECT_EQ(hu, (std::vector<double>{0.0, 0.3, 0.3}));
+    EXPECT_EQ(hv, (std::vector<double>{0.0, -0.1, -0.1}));
 }
 
 TEST(RestFaceRows, TheFrictionStageHoldsTheCellsWithZeroMomentum) {

@@ -30,7 +30,7 @@ struct ScenarioOverrides {
     std::optional<std::string> limiter;          // --limiter
     std::optional<double> output_interval;       // --output-interval
     std::optional<bool> rest_faces;              // --rest-faces / --no-rest-faces
-    std::optional<std::string> quality;          // --quality draft|standard|fine (before the flags above)
+    std::optional<std::string> quality;  // --quality draft|standard|fine (before the flags above)
 };
 
 // "true" or "false" (an on/off switch given a value: --rest-faces=false, or a batch
