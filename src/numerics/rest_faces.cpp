@@ -127,10 +127,23 @@ void keep_held_at_rest(const HeldFlag* held, const double* fx_h, const double* f
         keep_clone<false>(held, fx_h, fy_h, stride, hu, hv, held_next, i0, i1);
 }
 
+namespace {
+
+AVALANCHE_SIMD_CLONES void held_clone(const double* __restrict h, const double* __restrict hu,
+                                      const double* __restrict hv, double h_min,
+                                      HeldFlag* __restrict held, int i0, int i1) {
+#pragma omp simd
+    for (int i = i0; i < i1; ++i) {
+        const bool wet = !dry(h[i], h_min);
+        held[i] = wet & (hu[i] == 0.0) & (hv[i] == 0.0) ? 1 : 0;
+    }
+}
+
+}  // namespace
+
 void held_at_rest_row(const double* h, const double* hu, const double* hv, double h_min,
                       HeldFlag* held, int i0, int i1) noexcept {
-    for (int i = i0; i < i1; ++i)
-        held[i] = !dry(h[i], h_min) & (hu[i] == 0.0) & (hv[i] == 0.0) ? 1 : 0;
+    held_clone(h, hu, hv, h_min, held, i0, i1);
 }
 
 }  // namespace avalanche
