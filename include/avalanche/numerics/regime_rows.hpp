@@ -16,7 +16,8 @@ namespace avalanche {
 // regime_row): bit kRegimeXActive set where k_x is active, bit kRegimeYActive where
 // k_y is. A cell starts, and a dry or thin cell restarts, with both active
 // (kRegimeAtStart). Four bytes, not one: with one-byte flags GCC 12 left the AVX-512F
-// clone of regime_row scalar (no 64-lane byte vectors without AVX-512BW).
+// clone of regime_row scalar (no 64-lane byte vectors without AVX-512BW), and the
+// x86-64-v4 clones, which have them, vectorise none of its block loops either.
 using RegimeFlags = std::int32_t;
 inline constexpr RegimeFlags kRegimeXActive = 1, kRegimeYActive = 2;
 inline constexpr RegimeFlags kRegimeAtStart = kRegimeXActive | kRegimeYActive;
