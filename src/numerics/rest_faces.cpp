@@ -135,7 +135,7 @@ AVALANCHE_SIMD_CLONES void held_clone(const double* __restrict h, const double* 
 #pragma omp simd
     for (int i = i0; i < i1; ++i) {
         const bool wet = !dry(h[i], h_min);
-        held[i] = wet & (hu[i] == 0.0) & (hv[i] == 0.0) ? 1 : 0;
+        held[i] = (wet & (hu[i] == 0.0) & (hv[i] == 0.0)) ? 1 : 0;
     }
 }
 
