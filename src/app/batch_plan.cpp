@@ -246,8 +246,7 @@ Scenario scenario_for_case(const Scenario& base, const BatchCase& c) {
         else if (name == "rest_faces") {
             o.rest_faces = parse_switch(v);
             if (!o.rest_faces)
-                throw ConfigError("scenario " + c.id, std::string("rest_faces: ") +
-                                                          kSwitchExpected + ", got \"" + v + "\"");
+                throw ConfigError("scenario " + c.id, "rest_faces: " + not_a_switch(v));
         }
     }
     Scenario s = base;

@@ -93,8 +93,7 @@ void add_scenario_flags(CLI::App& cmd, ScenarioOverrides& o) {
         ->each([&o](const std::string& v) {
             o.rest_faces = parse_switch(v);
             // CLI11 names the flag and passes on only its own errors.
-            if (!o.rest_faces)
-                throw CLI::ValidationError(std::string(kSwitchExpected) + ", got \"" + v + "\"");
+            if (!o.rest_faces) throw CLI::ValidationError(not_a_switch(v));
         })
         ->group(kOverrideGroup);
     add_override(cmd, "--quality", o.quality,

@@ -109,6 +109,10 @@ std::optional<bool> parse_switch(const std::string& value) {
     return std::nullopt;
 }
 
+std::string not_a_switch(const std::string& value) {
+    return "expected true or false, got \"" + value + "\"";
+}
+
 void apply_overrides(Scenario& s, const ScenarioOverrides& o) {
     if (!o.dem.empty()) {
         DemTerrainSpec dem;

@@ -12,9 +12,9 @@ namespace {
 AVALANCHE_INLINE bool dry(double h, double h_min) { return !(h >= h_min) | !(h > 0.0); }
 
 // A candidate face has both sides held or dry and material on at least one; a face
-// with a moving cell, or between two dry ones, keeps the scheme's flux.
-AVALANCHE_INLINE bool candidate_face(const RestFaceRowInput& in, double h_min, int f) {
-    const bool dry_l = dry(in.h_l[f], h_min), dry_r = dry(in.h_r[f], h_min);
+// with a moving cell, or between two dry ones, keeps the scheme's flux. The caller's
+// dry tests of the face's cells (the test needs them again for the weights).
+AVALANCHE_INLINE bool candidate_face(const RestFaceRowInput& in, bool dry_l, bool dry_r, int f) {
     const bool material = !(dry_l & dry_r);
     return material & (dry_l | (in.held_l[f] != 0)) & (dry_r | (in.held_r[f] != 0));
 }
@@ -36,7 +36,7 @@ AVALANCHE_INLINE int hold_block(const RestFaceRowInput& in, const RestFaceRowPar
     for (int f = f0; f < f1; ++f) {
         const double hl = h_l[f], hr = h_r[f];
         const bool dry_l = dry(hl, h_min), dry_r = dry(hr, h_min);
-        const bool candidate = candidate_face(in, h_min, f);
+        const bool candidate = candidate_face(in, dry_l, dry_r, f);
         const double wl = dry_l ? 0.0 : (dry_r ? 1.0 : 0.5), wr = 1.0 - wl;
         // The static driving acceleration across the face: gravity along the bed and the
         // face's pressure gradient -(P_r - P_l) / (dn (h_l + h_r) / 2), P = c h^2 / 2 (for
@@ -81,21 +81,14 @@ AVALANCHE_SIMD_CLONES int hold_clone(const RestFaceRowInput& in, const RestFaceR
         const int b1 = std::min(b0 + kBlock, f1);
         int candidates = 0;
 #pragma omp simd reduction(+ : candidates)
-        for (int f = b0; f < b1; ++f) candidates += candidate_face(in, h_min, f) ? 1 : 0;
+        for (int f = b0; f < b1; ++f) {
+            const bool dry_l = dry(in.h_l[f], h_min), dry_r = dry(in.h_r[f], h_min);
+            candidates += candidate_face(in, dry_l, dry_r, f) ? 1 : 0;
+        }
         if (candidates > 0) held += hold_block<Metric>(in, p, fh, fn, ft, b0, b1);
     }
     return held;
 }
-
-}  // namespace
-
-int hold_rest_faces_row(const RestFaceRowInput& in, const RestFaceRowParams& p, double* fh,
-                        double* fn, double* ft, int f0, int f1) noexcept {
-    return in.sn_l != nullptr ? hold_clone<true>(in, p, fh, fn, ft, f0, f1)
-                              : hold_clone<false>(in, p, fh, fn, ft, f0, f1);
-}
-
-namespace {
 
 // keep_held_at_rest's loop, vectorised (the flags as above); with or without the next
 // advection's flags.
@@ -116,19 +109,7 @@ AVALANCHE_SIMD_CLONES void keep_clone(const HeldFlag* __restrict held,
     }
 }
 
-}  // namespace
-
-void keep_held_at_rest(const HeldFlag* held, const double* fx_h, const double* fy_h,
-                       std::ptrdiff_t stride, double* hu, double* hv, HeldFlag* held_next, int i0,
-                       int i1) noexcept {
-    if (held_next != nullptr)
-        keep_clone<true>(held, fx_h, fy_h, stride, hu, hv, held_next, i0, i1);
-    else
-        keep_clone<false>(held, fx_h, fy_h, stride, hu, hv, held_next, i0, i1);
-}
-
-namespace {
-
+// held_at_rest_row's loop, vectorised.
 AVALANCHE_SIMD_CLONES void held_clone(const double* __restrict h, const double* __restrict hu,
                                       const double* __restrict hv, double h_min,
                                       HeldFlag* __restrict held, int i0, int i1) {
@@ -140,6 +121,21 @@ AVALANCHE_SIMD_CLONES void held_clone(const double* __restrict h, const double* 
 }
 
 }  // namespace
+
+int hold_rest_faces_row(const RestFaceRowInput& in, const RestFaceRowParams& p, double* fh,
+                        double* fn, double* ft, int f0, int f1) noexcept {
+    return in.sn_l != nullptr ? hold_clone<true>(in, p, fh, fn, ft, f0, f1)
+                              : hold_clone<false>(in, p, fh, fn, ft, f0, f1);
+}
+
+void keep_held_at_rest(const HeldFlag* held, const double* fx_h, const double* fy_h,
+                       std::ptrdiff_t stride, double* hu, double* hv, HeldFlag* held_next, int i0,
+                       int i1) noexcept {
+    if (held_next != nullptr)
+        keep_clone<true>(held, fx_h, fy_h, stride, hu, hv, held_next, i0, i1);
+    else
+        keep_clone<false>(held, fx_h, fy_h, stride, hu, hv, held_next, i0, i1);
+}
 
 void held_at_rest_row(const double* h, const double* hu, const double* hv, double h_min,
                       HeldFlag* held, int i0, int i1) noexcept {

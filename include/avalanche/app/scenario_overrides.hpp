@@ -34,9 +34,9 @@ struct ScenarioOverrides {
 };
 
 // "true" or "false" (an on/off switch given a value: --rest-faces=false, or a batch
-// sweep's value); nothing for any other text, which kSwitchExpected describes.
+// sweep's value); nothing for any other text, which not_a_switch describes.
 std::optional<bool> parse_switch(const std::string& value);
-inline constexpr const char* kSwitchExpected = "expected true or false";
+std::string not_a_switch(const std::string& value);  // expected true or false, got "value"
 
 // Applies the flags; throws ConfigError naming the flag for a bad choice or a flag that
 // does not fit the scenario (e.g. --thickness on a cap).
