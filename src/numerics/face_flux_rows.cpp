@@ -230,6 +230,24 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
     }
 }
 
+// The end of the run of faces from `from` whose stencils all have a front (front) or
+// all have none (!front): blocks of 16 faces tested by vector compares, the block where
+// the run ends face by face. A loop face by face cost a seventh of the kernel's time on a
+// row without a front.
+AVALANCHE_INLINE int run_end(const double* __restrict thin, int from, int n, double h_dry,
+                             bool front) {
+    constexpr int kBlock = 16;
+    int b = from;
+    for (; b + kBlock <= n; b += kBlock) {
+        int other = 0;
+#pragma omp simd reduction(| : other)
+        for (int k = 0; k < kBlock; ++k) other |= (!(thin[b + k] >= h_dry) != front) ? 1 : 0;
+        if (other != 0) break;
+    }
+    while (b < n && !(thin[b] >= h_dry) == front) ++b;
+    return b;
+}
+
 // A row is cut into runs of faces with and without a front in their stencil: the runs
 // without one (the interior of a flow) skip the first-order flux their selection would
 // discard, the others compute both and select per face.
@@ -241,8 +259,7 @@ AVALANCHE_INLINE void waf_row_dispatch(const FaceRowInput& in, const FaceRowOutp
     stencil_thinnest(in, n, thin.data());
     for (int a = 0; a < n;) {
         const bool front = !(thin[static_cast<std::size_t>(a)] >= h_dry);
-        int b = a + 1;
-        while (b < n && !(thin[static_cast<std::size_t>(b)] >= h_dry) == front) ++b;
+        const int b = run_end(thin.data(), a + 1, n, h_dry, front);
         FaceRowInput sub = in;
         sub.h += a;
         sub.qn += a;
