@@ -109,7 +109,8 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
                               terrain_.normal_thickness.row(r),
                               metric ? terrain_.sx.row(r) : nullptr,
                               metric ? terrain_.sy.row(r) : nullptr,
-                              isotropic ? nullptr : w.regime_row.data() + kGhostLayers};
+                              isotropic ? nullptr : w.regime_row.data() + kGhostLayers,
+                              terrain_.slope_gravity};
     const PressureRowOutput out{w.cx.data() + o,      w.cy.data() + o,   w.u_lo.data() + o,
                                 w.u_hi.data() + o,    w.v_lo.data() + o, w.v_hi.data() + o,
                                 w.speed_hi.data() + o, w.ax.data() + o,    w.ay.data() + o};

@@ -6,6 +6,7 @@
 
 #include "avalanche/numerics/energy_cap.hpp"
 #include "avalanche/numerics/face_flux_rows.hpp"
+#include "avalanche/physics/dem_coefficients.hpp"
 #include "simd_clones.hpp"
 
 namespace avalanche {
@@ -17,9 +18,20 @@ namespace {
 template <bool Curvature, bool Metric>
 AVALANCHE_INLINE double gravity_friction(double& u, double& v, const SourceRowTerrain& t, int i,
                                          double sub, double td) {
-    u += sub * t.ax[i];
-    v += sub * t.ay[i];
-    double load = t.gn[i];
+    double ax, ay, load;
+    if constexpr (Metric) {
+        // The DEM frame's coefficients from the slopes, not read (dem_coefficients.hpp).
+        const DemCoefficients c = dem_coefficients(t.sx[i], t.sy[i], t.slope_gravity);
+        ax = c.ax;
+        ay = c.ay;
+        load = c.gn;
+    } else {
+        ax = t.ax[i];
+        ay = t.ay[i];
+        load = t.gn[i];
+    }
+    u += sub * ax;
+    v += sub * ay;
     if constexpr (Curvature) load += t.cxx[i] * u * u + 2.0 * t.cxy[i] * u * v + t.cyy[i] * v * v;
     load = std::max(load, 0.0);  // material lifting off feels no friction
     double speed2 = u * u + v * v;
@@ -185,10 +197,24 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
                                     const PressureRowParams& p, int i) {
     const double hmin = p.h_min;
     const double hh = in.h[i];
+    double px, py, gn, nt;
+    if constexpr (Metric) {
+        // The DEM frame's coefficients from the slopes, not read (dem_coefficients.hpp).
+        const DemCoefficients c = dem_coefficients(in.sx[i], in.sy[i], in.slope_gravity);
+        px = c.px;
+        py = c.py;
+        gn = c.gn;
+        nt = c.normal_thickness;
+    } else {
+        px = in.px[i];
+        py = in.py[i];
+        gn = in.gn[i];
+        nt = in.nt[i];
+    }
     double cx, cy;
     if constexpr (Isotropic) {
-        cx = in.px[i];
-        cy = in.py[i];
+        cx = px;
+        cy = py;
     } else {
         // The cell's regime (regime_row): active where the flow extends, passive where
         // it compresses (Wang & Li 2017 after eq. 3).
@@ -199,8 +225,8 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
         const double ky =
             x_active ? (y_active ? k.ky_given_kx_active_active : k.ky_given_kx_active_passive)
                      : (y_active ? k.ky_given_kx_passive_active : k.ky_given_kx_passive_passive);
-        cx = kx * in.px[i];
-        cy = ky * in.py[i];
+        cx = kx * px;
+        cy = ky * py;
     }
     out.cx[i] = cx;
     out.cy[i] = cy;
@@ -220,7 +246,7 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
         const double w = in.sx[i] * u + in.sy[i] * v;
         speed2 += w * w;
     }
-    const double shi = std::sqrt(speed2) + 2.0 * std::sqrt(p.k_max * in.gn[i] * hh * in.nt[i]);
+    const double shi = std::sqrt(speed2) + 2.0 * std::sqrt(p.k_max * gn * hh * nt);
     out.u_lo[i] = wet ? u - ax : kNoVelocityBound;
     out.u_hi[i] = wet ? u + ax : -kNoVelocityBound;
     out.v_lo[i] = wet ? v - ay : kNoVelocityBound;

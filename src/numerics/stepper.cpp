@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "avalanche/core/error.hpp"
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/energy_cap.hpp"
 
@@ -25,7 +26,11 @@ Stepper::Stepper(const Grid& grid, const TerrainFields& terrain, const MaterialP
       edge_outflow_{std::vector<double>(static_cast<std::size_t>(grid.ny)),
                     std::vector<double>(static_cast<std::size_t>(grid.ny)),
                     std::vector<double>(static_cast<std::size_t>(grid.nx)),
-                    std::vector<double>(static_cast<std::size_t>(grid.nx))} {}
+                    std::vector<double>(static_cast<std::size_t>(grid.nx))} {
+    // The per-cell passes compute the DEM frame's coefficients from the slopes with this g.
+    if (terrain.has_metric && !(terrain.slope_gravity > 0.0))
+        throw Error(ExitCode::internal, "Stepper: a terrain with slopes (sx, sy) needs its slope_gravity");
+}
 
 // ---------------------------------------------------------------- energy cap
 
@@ -389,7 +394,8 @@ void Stepper::apply_sources(State& s, double dt) {
                                  curv ? terrain_.cxy.row(j) : nullptr,
                                  curv ? terrain_.cyy.row(j) : nullptr,
                                  metric ? terrain_.sx.row(j) : nullptr,
-                                 metric ? terrain_.sy.row(j) : nullptr};
+                                 metric ? terrain_.sy.row(j) : nullptr,
+                                 terrain_.slope_gravity};
         const auto [i0, i1] = band_columns_[static_cast<std::size_t>(j - b.j0)];
         if (i0 < i1) apply_sources_row(s.h.row(j), s.hu.row(j), s.hv.row(j), t, p, i0, i1);
         if (rest && i0 < i1)

@@ -6,6 +6,7 @@
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/core/state.hpp"
+#include "avalanche/physics/dem_coefficients.hpp"
 
 namespace avalanche {
 
@@ -104,14 +105,16 @@ void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const De
                 raw[2][k] = dd.zyy / s;
             }
             if (i < i0 || i >= i1 || j < j0 || j >= j1) continue;  // the smoothing's halo
-            t.ax(i, j) = -gravity * dd.zx / s2;
-            t.ay(i, j) = -gravity * dd.zy / s2;
-            t.px(i, j) = gravity / (s2 * (1.0 + dd.zx * dd.zx));
-            t.py(i, j) = gravity / (s2 * (1.0 + dd.zy * dd.zy));
-            t.gn(i, j) = gravity / s;
+            // The solver's passes compute the same from sx, sy (dem_coefficients.hpp).
+            const DemCoefficients c = dem_coefficients(dd.zx, dd.zy, gravity);
+            t.ax(i, j) = c.ax;
+            t.ay(i, j) = c.ay;
+            t.px(i, j) = c.px;
+            t.py(i, j) = c.py;
+            t.gn(i, j) = c.gn;
             t.sx(i, j) = dd.zx;
             t.sy(i, j) = dd.zy;
-            t.normal_thickness(i, j) = 1.0 / s;
+            t.normal_thickness(i, j) = c.normal_thickness;
         }
     }
     if (t.has_curvature) {
@@ -156,6 +159,7 @@ TerrainFields dem_terrain(const Grid& grid, const std::vector<double>& z, double
     t.elevation.extend_to_ghosts();
     t.has_curvature = has_curvature(grid, t.elevation, options.curvature_tolerance);
     t.has_metric = true;
+    t.slope_gravity = gravity;
     // Zero until made (Field2D's zeros are not written: memory nobody makes stays
     // untouched).
     const auto curvature = [](Field2D TerrainFields::*f) {

@@ -56,6 +56,7 @@ TerrainFields& TerrainFields::operator=(const TerrainFields& other) {
     elevation = other.elevation;
     has_curvature = other.has_curvature;
     has_metric = other.has_metric;
+    slope_gravity = other.slope_gravity;
     on_demand.reset();
     return *this;
 }

@@ -57,6 +57,21 @@ Row random_row(std::mt19937_64& rng, int n) {
     return r;
 }
 
+// The DEM frame's coefficients of every cell from its slopes sx, sy (dem_frame.hpp:
+// a = -g grad z / s^2, p_x = g / (s^2 (1 + z_x^2)), g_n = g / s), as dem_terrain stores
+// them: with slopes the kernels compute these instead of reading them.
+void dem_coefficients_of_slopes(Row& r, double g) {
+    for (std::size_t i = 0; i < r.sx.size(); ++i) {
+        const double zx = r.sx[i], zy = r.sy[i];
+        const double s2 = 1.0 + zx * zx + zy * zy;
+        r.ax[i] = -g * zx / s2;
+        r.ay[i] = -g * zy / s2;
+        r.px[i] = g / (s2 * (1.0 + zx * zx));
+        r.py[i] = g / (s2 * (1.0 + zy * zy));
+        r.gn[i] = g / std::sqrt(s2);
+    }
+}
+
 }  // namespace
 
 TEST(CellRows, SourcesRowIsBitwiseTheScalarSourceLoop) {
@@ -69,6 +84,9 @@ TEST(CellRows, SourcesRowIsBitwiseTheScalarSourceLoop) {
         const double dt = 0.05, td = 0.4, g = 9.81;
         const double budget = trial % 16 < 8 ? g * 60.0 : std::numeric_limits<double>::infinity();
         Row r = random_row(rng, n);
+        // With slopes (the DEM frame) the kernel computes ax, ay, gn from them.
+        const double g_slopes = 9.80665;
+        if (metric) dem_coefficients_of_slopes(r, g_slopes);
         Row ref = r;
         // The reference: apply_sources' loop body.
         const double sub = dt / m;
@@ -116,7 +134,8 @@ TEST(CellRows, SourcesRowIsBitwiseTheScalarSourceLoop) {
                                  curv ? r.cxy.data() : nullptr,
                                  curv ? r.cyy.data() : nullptr,
                                  metric ? r.sx.data() : nullptr,
-                                 metric ? r.sy.data() : nullptr};
+                                 metric ? r.sy.data() : nullptr,
+                                 metric ? g_slopes : 0.0};
         apply_sources_row(r.h.data(), r.hu.data(), r.hv.data(), t,
                           SourceRowParams{sub, m, td, g, budget}, 0, n);
         for (int i = 0; i < n; ++i) {

@@ -9,10 +9,12 @@
 // state of their own run on complete terrain.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <thread>
 #include <vector>
 
 #include "avalanche/numerics/stepper.hpp"
+#include "avalanche/physics/dem_coefficients.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 #include "rough_valley.hpp"
@@ -38,6 +40,31 @@ void expect_same_terrain(const TerrainFields& a, const TerrainFields& b) {
     const Field2D* fb[] = {&b.ax, &b.ay, &b.px, &b.py, &b.gn, &b.cxx, &b.cxy, &b.cyy, &b.sx, &b.sy,
                            &b.normal_thickness, &b.elevation};
     for (int k = 0; k < 12; ++k) EXPECT_TRUE(same_bits(*fa[k], *fb[k])) << names[k];
+}
+
+// The solver's per-cell passes do not read ax, ay, px, py, gn and normal_thickness in the
+// DEM frame: they compute them from sx, sy and slope_gravity (dem_coefficients.hpp). That
+// must be what dem_terrain stores, to the bit, in every cell, ghost cells included.
+TEST(TerrainOnDemand, CoefficientsFromTheSlopesAreTheStoredOnes) {
+    const Grid g{150, 97, 5.0, 5.0, 1000.0, 2000.0};
+    DemFrameOptions complete;
+    complete.on_demand = false;
+    const TerrainFields t = dem_terrain(g, rough_valley(g), kG, complete);
+    ASSERT_TRUE(t.has_metric);
+    ASSERT_EQ(t.slope_gravity, kG);
+    const auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    long cells = 0, steep = 0;
+    for (std::size_t k = 0; k < t.sx.raw().size(); ++k) {
+        const DemCoefficients c = dem_coefficients(t.sx.raw()[k], t.sy.raw()[k], t.slope_gravity);
+        ASSERT_TRUE(same(c.ax, t.ax.raw()[k]) && same(c.ay, t.ay.raw()[k]) && same(c.px, t.px.raw()[k]) &&
+                    same(c.py, t.py.raw()[k]) && same(c.gn, t.gn.raw()[k]) &&
+                    same(c.normal_thickness, t.normal_thickness.raw()[k]))
+            << "storage index " << k;
+        ++cells;
+        steep += std::abs(t.sx.raw()[k]) + std::abs(t.sy.raw()[k]) > 0.3;
+    }
+    EXPECT_EQ(cells, static_cast<long>((g.nx + 2 * kGhostLayers) * (g.ny + 2 * kGhostLayers)));
+    EXPECT_GT(steep, cells / 10);  // not a flat terrain
 }
 
 TEST(TerrainOnDemand, TilesHoldTheValuesOfTheWholeGridToTheBit) {

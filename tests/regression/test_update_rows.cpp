@@ -253,6 +253,20 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
             sy.v[k] = sym(rng);
             if (k < w) regime[static_cast<std::size_t>(k)] = static_cast<RegimeFlags>(4.0 * unit(rng));
         }
+        // With slopes (the DEM frame) the kernel computes px, py, gn and nt from them, as
+        // dem_terrain stores them (dem_frame.hpp: p_x = g / (s^2 (1 + z_x^2)), g_n = g / s,
+        // nt = 1 / s); the reference reads these.
+        const double g_slopes = 9.80665;
+        if (metric)
+            for (int k = 0; k < 3 * w; ++k) {
+                const double zx = sx.v[k], zy = sy.v[k];
+                const double s2 = 1.0 + zx * zx + zy * zy;
+                const double s = std::sqrt(s2);
+                px.v[k] = g_slopes / (s2 * (1.0 + zx * zx));
+                py.v[k] = g_slopes / (s2 * (1.0 + zy * zy));
+                gn.v[k] = g_slopes / s;
+                nt.v[k] = 1.0 / s;
+            }
         // Column i of the row is element i + ng.
         const auto col0 = [&](Rows& f, int row) { return f.v.data() + row * w + ng; };
         // The velocity quotients hu / h, hv / h of every cell, as the stepper passes them.
@@ -270,7 +284,8 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
                                   col0(nt, 1),
                                   metric ? col0(sx, 1) : nullptr,
                                   metric ? col0(sy, 1) : nullptr,
-                                  regime.data() + ng};
+                                  regime.data() + ng,
+                                  metric ? g_slopes : 0.0};
         std::vector<double> out_v(9 * static_cast<std::size_t>(w), -7.0);
         const auto out_at = [&](int a) { return out_v.data() + a * w + ng; };
         const PressureRowOutput out{out_at(0), out_at(1), out_at(2), out_at(3), out_at(4),

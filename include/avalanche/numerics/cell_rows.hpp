@@ -26,6 +26,9 @@ struct SourceRowTerrain {
     const double* cyy;
     const double* sx;
     const double* sy;
+    // In the DEM frame (sx, sy set) ax, ay and gn are not read: they are computed from
+    // sx, sy with this g (TerrainFields::slope_gravity, dem_coefficients.hpp).
+    double slope_gravity = 0.0;
 };
 
 struct SourceRowParams {
@@ -68,10 +71,14 @@ StateRowScan state_scan_row(const double* h, const double* hu, const double* hv,
 // (u = hu / h, v = hv / h of every cell, as state_velocity_row computes them), the
 // terrain's row r (sx, sy null in bed-fitted frames) and the row's regime
 // (regime_row), required unless the pressure is isotropic.
+// In the DEM frame (sx, sy set) px, py, gn and nt are not read: they are computed from
+// sx, sy with slope_gravity (TerrainFields::slope_gravity, dem_coefficients.hpp), the
+// same values as stored.
 struct PressureRowInput {
     const double *h, *u, *v;
     const double *px, *py, *gn, *nt, *sx, *sy;
     const RegimeFlags* regime = nullptr;
+    double slope_gravity = 0.0;
 };
 
 // The invariant bounds of a dry or thin cell, which bounds nothing: u_lo = v_lo =

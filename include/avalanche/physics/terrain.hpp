@@ -75,6 +75,10 @@ struct TerrainFields {
                               // potential g z the accelerations ax, ay derive from. Always complete.
     bool has_curvature = false;
     bool has_metric = false;
+    // With has_metric (the DEM frame): the g of ax, ay, px, py, gn and normal_thickness,
+    // functions of sx, sy alone (dem_coefficients.hpp), which the solver's per-cell passes
+    // compute from sx, sy rather than read.
+    double slope_gravity = 0.0;
     // Set when the fields are made on demand (see above; tiles not made yet hold zeros);
     // null when every value was computed at once (the chute frame, a copy).
     std::unique_ptr<TerrainTiles> on_demand;
