@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "avalanche/core/error.hpp"
 #include "avalanche/numerics/stepper.hpp"
 #include "avalanche/physics/dem_coefficients.hpp"
 #include "avalanche/physics/dem_frame.hpp"
@@ -65,6 +66,16 @@ TEST(TerrainOnDemand, CoefficientsFromTheSlopesAreTheStoredOnes) {
     }
     EXPECT_EQ(cells, static_cast<long>((g.nx + 2 * kGhostLayers) * (g.ny + 2 * kGhostLayers)));
     EXPECT_GT(steep, cells / 10);  // not a flat terrain
+}
+
+// Without the g its coefficients were made with, a terrain with slopes cannot give the
+// solver those coefficients: the stepper refuses it rather than compute them with g = 0.
+TEST(TerrainOnDemand, AStepperRefusesSlopesWithoutTheirGravity) {
+    const Grid g{20, 10, 5.0, 5.0, 0.0, 0.0};
+    TerrainFields t = dem_terrain(g, rough_valley(g), kG);
+    EXPECT_NO_THROW(Stepper(g, t, MaterialParams{}, NumericsParams{}, 1e-4));
+    t.slope_gravity = 0.0;
+    EXPECT_THROW(Stepper(g, t, MaterialParams{}, NumericsParams{}, 1e-4), Error);
 }
 
 TEST(TerrainOnDemand, TilesHoldTheValuesOfTheWholeGridToTheBit) {
