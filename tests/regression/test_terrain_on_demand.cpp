@@ -4,7 +4,8 @@
 // smoothing, whatever the order the tiles are made in); a run on such terrain must
 // give the state of a run on complete terrain, to the bit, while making only the tiles
 // near the flow -- if the solver read a coefficient it had not made, it would read a
-// zero (no gravity, no pressure) and the states would differ. Two runs sharing one
+// zero (no gravity, no pressure; where it computes the coefficients from the slopes,
+// those of flat ground) and the states would differ. Two runs sharing one
 // terrain on two threads (a batch's scenarios share their scene) must each give the
 // state of their own run on complete terrain.
 #include <gtest/gtest.h>
