@@ -100,13 +100,14 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
     const bool isotropic = material_.earth_pressure == EarthPressureModel::isotropic;
     // Inputs and outputs address column 0 of row r.
     const std::ptrdiff_t o = w.k(0, r);
+    // The DEM frame stores no px, py, gn: the kernel computes them (and nt) from sx, sy.
     const PressureRowInput in{s.h.row(r),
                               w.su.data() + o,
                               w.sv.data() + o,
-                              terrain_.px.row(r),
-                              terrain_.py.row(r),
-                              terrain_.gn.row(r),
-                              terrain_.normal_thickness.row(r),
+                              metric ? nullptr : terrain_.px.row(r),
+                              metric ? nullptr : terrain_.py.row(r),
+                              metric ? nullptr : terrain_.gn.row(r),
+                              metric ? nullptr : terrain_.normal_thickness.row(r),
                               metric ? terrain_.sx.row(r) : nullptr,
                               metric ? terrain_.sy.row(r) : nullptr,
                               isotropic ? nullptr : w.regime_row.data() + kGhostLayers,
@@ -202,15 +203,19 @@ void Stepper::hold_rest_faces(const State& s, const StripBuffers& w, const HeldF
         return std::pair{f.raw().data() + gl, f.raw().data() + gr};
     };
     const std::vector<double>& c = x_faces ? w.cx : w.cy;
-    const auto [an_l, an_r] = pair(x_faces ? terrain_.ax : terrain_.ay);
-    const auto [at_l, at_r] = pair(x_faces ? terrain_.ay : terrain_.ax);
-    const auto [gn_l, gn_r] = pair(terrain_.gn);
     RestFaceRowInput in{s.h.raw().data() + gl, s.h.raw().data() + gr, held + gl, held + gr,
-                        c.data() + kl, c.data() + kr, an_l, an_r, at_l, at_r, gn_l, gn_r,
-                        nullptr, nullptr, nullptr, nullptr};
+                        c.data() + kl, c.data() + kr, nullptr, nullptr, nullptr, nullptr,
+                        nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
     if (terrain_.has_metric) {
+        // The DEM frame stores no ax, ay, gn: the kernel computes them from the slopes.
         std::tie(in.sn_l, in.sn_r) = pair(x_faces ? terrain_.sx : terrain_.sy);
         std::tie(in.st_l, in.st_r) = pair(x_faces ? terrain_.sy : terrain_.sx);
+        in.slope_gravity = terrain_.slope_gravity;
+        in.x_faces = x_faces;
+    } else {
+        std::tie(in.an_l, in.an_r) = pair(x_faces ? terrain_.ax : terrain_.ay);
+        std::tie(in.at_l, in.at_r) = pair(x_faces ? terrain_.ay : terrain_.ax);
+        std::tie(in.gn_l, in.gn_r) = pair(terrain_.gn);
     }
     const RestFaceRowParams p{1.0 / (x_faces ? grid_.dx : grid_.dy), tan_delta_, h_min_};
     hold_rest_faces_row(in, p, fh, fn, ft, f0, f1);

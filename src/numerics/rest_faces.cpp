@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "avalanche/physics/dem_coefficients.hpp"
 #include "simd_clones.hpp"
 
 namespace avalanche {
@@ -24,11 +25,31 @@ AVALANCHE_INLINE bool candidate_face(const RestFaceRowInput& in, bool dry_l, boo
 // test, quotients of non-candidate lanes included, and the candidates select. A
 // candidate's left cell's terrain weighs 1 if the right cell is dry, 0 if the left one
 // is, else 1/2: a dry cell's slope does not act on the material.
-template <bool Metric>
+// A cell's normal and tangential source accelerations and its bed-normal gravity: read,
+// or in the DEM frame computed from its slopes (normal sn, tangential st) as the terrain
+// computes them (dem_coefficients with z_x the x-slope: sn on x-faces, st on y-faces).
+struct CellDrive {
+    double an, at, gn;
+};
+
+template <bool Metric, bool XFaces>
+AVALANCHE_INLINE CellDrive cell_drive(const double* an, const double* at, const double* gn,
+                                      const double* sn, const double* st, double g, int f) {
+    if constexpr (Metric) {
+        const DemCoefficients c =
+            XFaces ? dem_coefficients(sn[f], st[f], g) : dem_coefficients(st[f], sn[f], g);
+        return {XFaces ? c.ax : c.ay, XFaces ? c.ay : c.ax, c.gn};
+    } else {
+        return {an[f], at[f], gn[f]};
+    }
+}
+
+template <bool Metric, bool XFaces>
 AVALANCHE_INLINE int hold_block(const RestFaceRowInput& in, const RestFaceRowParams& p,
                                 double* __restrict fh, double* __restrict fn, double* __restrict ft,
                                 int f0, int f1) {
     const double inv_dn = p.inv_dn, tan_delta = p.tan_delta, h_min = p.h_min;
+    const double g = in.slope_gravity;
     const double* __restrict h_l = in.h_l;
     const double* __restrict h_r = in.h_r;
     int held = 0;
@@ -43,9 +64,10 @@ AVALANCHE_INLINE int hold_block(const RestFaceRowInput& in, const RestFaceRowPar
         // uniform c, -c dh/dn); along the face, gravity alone (the pressure gradients
         // along it act on the faces across it).
         const double pl = 0.5 * in.c_l[f] * hl * hl, pr = 0.5 * in.c_r[f] * hr * hr;
-        const double an =
-            wl * in.an_l[f] + wr * in.an_r[f] - (pr - pl) * inv_dn / (0.5 * (hl + hr));
-        const double at = wl * in.at_l[f] + wr * in.at_r[f];
+        const CellDrive dl = cell_drive<Metric, XFaces>(in.an_l, in.at_l, in.gn_l, in.sn_l, in.st_l, g, f);
+        const CellDrive dr = cell_drive<Metric, XFaces>(in.an_r, in.at_r, in.gn_r, in.sn_r, in.st_r, g, f);
+        const double an = wl * dl.an + wr * dr.an - (pr - pl) * inv_dn / (0.5 * (hl + hr));
+        const double at = wl * dl.at + wr * dr.at;
         double drive2 = an * an + at * at;
         if constexpr (Metric) {
             // In the DEM frame (horizontal velocity) the along-surface magnitude, as the
@@ -54,7 +76,7 @@ AVALANCHE_INLINE int hold_block(const RestFaceRowInput& in, const RestFaceRowPar
                 (wl * in.sn_l[f] + wr * in.sn_r[f]) * an + (wl * in.st_l[f] + wr * in.st_r[f]) * at;
             drive2 += w * w;
         }
-        const double limit = tan_delta * (wl * in.gn_l[f] + wr * in.gn_r[f]);
+        const double limit = tan_delta * (wl * dl.gn + wr * dr.gn);
         // Strictly below the limit: without friction (delta = 0) no face is held.
         const bool hold = candidate & (drive2 < limit * limit);
         fh[f] = hold ? 0.0 : fh[f];
@@ -71,7 +93,7 @@ AVALANCHE_INLINE int hold_block(const RestFaceRowInput& in, const RestFaceRowPar
 // would not vectorise.
 constexpr int kBlock = 32;
 
-template <bool Metric>
+template <bool Metric, bool XFaces>
 AVALANCHE_SIMD_CLONES int hold_clone(const RestFaceRowInput& in, const RestFaceRowParams& p,
                                      double* __restrict fh, double* __restrict fn,
                                      double* __restrict ft, int f0, int f1) {
@@ -85,7 +107,7 @@ AVALANCHE_SIMD_CLONES int hold_clone(const RestFaceRowInput& in, const RestFaceR
             const bool dry_l = dry(in.h_l[f], h_min), dry_r = dry(in.h_r[f], h_min);
             candidates += candidate_face(in, dry_l, dry_r, f) ? 1 : 0;
         }
-        if (candidates > 0) held += hold_block<Metric>(in, p, fh, fn, ft, b0, b1);
+        if (candidates > 0) held += hold_block<Metric, XFaces>(in, p, fh, fn, ft, b0, b1);
     }
     return held;
 }
@@ -124,8 +146,9 @@ AVALANCHE_SIMD_CLONES void held_clone(const double* __restrict h, const double* 
 
 int hold_rest_faces_row(const RestFaceRowInput& in, const RestFaceRowParams& p, double* fh,
                         double* fn, double* ft, int f0, int f1) noexcept {
-    return in.sn_l != nullptr ? hold_clone<true>(in, p, fh, fn, ft, f0, f1)
-                              : hold_clone<false>(in, p, fh, fn, ft, f0, f1);
+    if (in.sn_l == nullptr) return hold_clone<false, true>(in, p, fh, fn, ft, f0, f1);
+    return in.x_faces ? hold_clone<true, true>(in, p, fh, fn, ft, f0, f1)
+                      : hold_clone<true, false>(in, p, fh, fn, ft, f0, f1);
 }
 
 void keep_held_at_rest(const HeldFlag* held, const double* fx_h, const double* fy_h,

@@ -59,7 +59,7 @@ double Stepper::energy_budget_in(const State& s, const ActiveBox& wet) const {
                 const double w = terrain_.sx(i, j) * u + terrain_.sy(i, j) * v;
                 speed2 += w * w;
             }
-            const double gn = terrain_.gn(i, j);
+            const double gn = terrain_.coefficients(i, j).gn;
             const double hn = h * terrain_.normal_thickness(i, j);
             const double e = 0.5 * speed2 + g * (terrain_.elevation(i, j) + hn * g / gn) + 2.0 * k_max_ * gn * hn;
             budget = std::max(budget, e);
@@ -240,6 +240,7 @@ double Stepper::stable_dt(const State& s) const {
                                 k_.ky_given_kx_passive_active, k_.ky_given_kx_passive_passive});
     double rate = 0.0;  // max over cells of (|u| + a_x)/dx and (|v| + a_y)/dy
     const ActiveBox b = box_;
+    const bool metric = terrain_.has_metric;
     // The rows' band columns differ in width, so the rows are handed out eight at a time
     // (here, in the thin-layer rule and the sources): a whole avaKot run at 5 m on two
     // threads 8.0-8.4 s against 8.3-8.5 s with equal shares of rows.
@@ -247,8 +248,11 @@ double Stepper::stable_dt(const State& s) const {
     for (int j = b.j0; j < b.j1; ++j) {
         const auto [i0, i1] = band_columns_[static_cast<std::size_t>(j - b.j0)];
         if (i0 >= i1) continue;
-        rate = std::max(rate, cfl_rate_row(s.h.row(j), s.hu.row(j), s.hv.row(j), terrain_.px.row(j),
-                                           terrain_.py.row(j), kx, ky, grid_.dx, grid_.dy, h_min_, i0, i1));
+        const CflRowTerrain t = metric ? CflRowTerrain{nullptr, nullptr, terrain_.sx.row(j),
+                                                       terrain_.sy.row(j), terrain_.slope_gravity}
+                                       : CflRowTerrain{terrain_.px.row(j), terrain_.py.row(j)};
+        rate = std::max(rate, cfl_rate_row(s.h.row(j), s.hu.row(j), s.hv.row(j), t, kx, ky, grid_.dx,
+                                           grid_.dy, h_min_, i0, i1));
     }
     return rate > 0.0 ? numerics_.cfl / rate : std::numeric_limits<double>::infinity();
 }
@@ -386,9 +390,10 @@ void Stepper::apply_sources(State& s, double dt) {
     const bool curv = terrain_.has_curvature, metric = terrain_.has_metric;
 #pragma omp parallel for schedule(dynamic, 8) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
-        const SourceRowTerrain t{terrain_.ax.row(j),
-                                 terrain_.ay.row(j),
-                                 terrain_.gn.row(j),
+        // The DEM frame stores no ax, ay, gn: the kernel computes them from sx, sy.
+        const SourceRowTerrain t{metric ? nullptr : terrain_.ax.row(j),
+                                 metric ? nullptr : terrain_.ay.row(j),
+                                 metric ? nullptr : terrain_.gn.row(j),
                                  terrain_.elevation.row(j),
                                  curv ? terrain_.cxx.row(j) : nullptr,
                                  curv ? terrain_.cxy.row(j) : nullptr,

@@ -106,15 +106,11 @@ void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const De
             }
             if (i < i0 || i >= i1 || j < j0 || j >= j1) continue;  // the smoothing's halo
             // The solver's passes compute the same from sx, sy (dem_coefficients.hpp).
-            const DemCoefficients c = dem_coefficients(dd.zx, dd.zy, gravity);
-            t.ax(i, j) = c.ax;
-            t.ay(i, j) = c.ay;
-            t.px(i, j) = c.px;
-            t.py(i, j) = c.py;
-            t.gn(i, j) = c.gn;
+            // ax, ay, px, py and gn are not stored: their readers compute them from sx, sy
+            // (TerrainFields::coefficients).
             t.sx(i, j) = dd.zx;
             t.sy(i, j) = dd.zy;
-            t.normal_thickness(i, j) = c.normal_thickness;
+            t.normal_thickness(i, j) = dem_coefficients(dd.zx, dd.zy, gravity).normal_thickness;
         }
     }
     if (t.has_curvature) {
@@ -165,8 +161,13 @@ TerrainFields dem_terrain(const Grid& grid, const std::vector<double>& z, double
     const auto curvature = [](Field2D TerrainFields::*f) {
         return f == &TerrainFields::cxx || f == &TerrainFields::cxy || f == &TerrainFields::cyy;
     };
+    // Not stored: functions of sx, sy (TerrainFields::coefficients).
+    const auto from_slopes = [](Field2D TerrainFields::*f) {
+        return f == &TerrainFields::ax || f == &TerrainFields::ay || f == &TerrainFields::px ||
+               f == &TerrainFields::py || f == &TerrainFields::gn;
+    };
     for (Field2D TerrainFields::*f : kDerivedTerrainFields)
-        if (t.has_curvature || !curvature(f)) t.*f = field();
+        if ((t.has_curvature || !curvature(f)) && !from_slopes(f)) t.*f = field();
     t.on_demand = std::make_unique<TerrainTiles>(
         grid, [grid, gravity, options](TerrainFields& f, int i0, int i1, int j0, int j1) {
             make_dem_cells(f, grid, gravity, options, i0, i1, j0, j1);

@@ -4,6 +4,7 @@
 #include <mutex>
 
 #include "avalanche/core/state.hpp"
+#include "avalanche/physics/dem_coefficients.hpp"
 
 namespace avalanche {
 
@@ -99,6 +100,14 @@ void TerrainFields::ensure(int i0, int i1, int j0, int j1) const {
 
 void TerrainFields::ensure_everywhere() const {
     if (on_demand) ensure(0, elevation.nx(), 0, elevation.ny());
+}
+
+CellCoefficients TerrainFields::coefficients(int i, int j) const {
+    if (has_metric) {
+        const DemCoefficients c = dem_coefficients(sx(i, j), sy(i, j), slope_gravity);
+        return {c.ax, c.ay, c.px, c.py, c.gn};
+    }
+    return {ax(i, j), ay(i, j), px(i, j), py(i, j), gn(i, j)};
 }
 
 }  // namespace avalanche

@@ -83,7 +83,7 @@ TEST(SceneFingerprint, EachInputCounts) {
     }
     {
         Scene s;
-        s.terrain.gn(12, 6) = with_bit_flipped(s.terrain.gn(12, 6), 0);
+        s.terrain.sx(12, 6) = with_bit_flipped(s.terrain.sx(12, 6), 0);
         EXPECT_NE(s.fingerprint(), base) << "a terrain coefficient";
     }
     {
@@ -99,7 +99,7 @@ TEST(SceneFingerprint, EachInputCounts) {
     {
         Scene s;
         // The order of the fields counts.
-        std::swap(s.terrain.ax, s.terrain.ay);
+        std::swap(s.terrain.sx, s.terrain.sy);
         EXPECT_NE(s.fingerprint(), base) << "two fields exchanged";
     }
 }

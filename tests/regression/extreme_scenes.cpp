@@ -173,7 +173,7 @@ Scene make_scene(const Case& c) {
             bottom = std::min(bottom, z);
             const double h = s.initial.h(i, j);
             if (h <= 0.0) continue;
-            top = std::max(top, z + h * kGravity / s.terrain.gn(i, j));
+            top = std::max(top, z + h * kGravity / s.terrain.coefficients(i, j).gn);
             s.h0 = std::max(s.h0, h * s.terrain.normal_thickness(i, j));
             s.u0 = std::max(s.u0, true_speed(s, s.initial, i, j));
         }

@@ -151,11 +151,16 @@ TEST(CellRows, SourcesRowIsBitwiseTheScalarSourceLoop) {
     EXPECT_GT(stopped, 50);  // friction stopped cells
 }
 
+// Odd trials in the DEM frame: the kernel computes px, py from the slopes (not read,
+// null), the reference reads the values dem_terrain stored before 2026-12-05.
 TEST(CellRows, CflRateRowIsTheScalarMaximum) {
     std::mt19937_64 rng(20261204);
+    const double g_slopes = 9.81;
     for (int trial = 0; trial < 50; ++trial) {
         const int n = 40 + trial;
-        const Row r = random_row(rng, n);
+        const bool metric = trial % 2 == 1;
+        Row r = random_row(rng, n);
+        if (metric) dem_coefficients_of_slopes(r, g_slopes);
         const double kx = 1.7, ky = 0.6, dx = 5.0, dy = 4.0, h_min = 1e-4;
         double ref = 0.0;
         for (int i = 0; i < n; ++i) {
@@ -166,16 +171,18 @@ TEST(CellRows, CflRateRowIsTheScalarMaximum) {
             const double ry = (std::abs(v) + std::sqrt(ky * r.py[i] * r.h[i])) / dy;
             ref = std::max(ref, std::max(rx, ry));
         }
-        const double got = cfl_rate_row(r.h.data(), r.hu.data(), r.hv.data(), r.px.data(),
-                                        r.py.data(), kx, ky, dx, dy, h_min, 0, n);
+        const CflRowTerrain t = metric ? CflRowTerrain{nullptr, nullptr, r.sx.data(), r.sy.data(), g_slopes}
+                                       : CflRowTerrain{r.px.data(), r.py.data()};
+        const double got = cfl_rate_row(r.h.data(), r.hu.data(), r.hv.data(), t, kx, ky, dx, dy,
+                                        h_min, 0, n);
         ASSERT_TRUE(same_bits(ref, got))
             << "trial " << trial << ": scalar " << ref << " row " << got;
         ASSERT_GT(ref, 0.0);
     }
     // A row without a wet cell has rate 0.
     std::vector<double> dry(17, 0.0), p(17, 9.81);
-    EXPECT_EQ(cfl_rate_row(dry.data(), dry.data(), dry.data(), p.data(), p.data(), 1.0, 1.0, 1.0,
-                           1.0, 1e-4, 0, 17),
+    EXPECT_EQ(cfl_rate_row(dry.data(), dry.data(), dry.data(), CflRowTerrain{p.data(), p.data()},
+                           1.0, 1.0, 1.0, 1.0, 1e-4, 0, 17),
               0.0);
 }
 

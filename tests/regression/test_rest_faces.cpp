@@ -4,6 +4,7 @@
 // cells drives -(P_r - P_l) / ((h_l + h_r) / 2) across it.
 #include <gtest/gtest.h>
 
+#include <tuple>
 #include <vector>
 
 #include "avalanche/numerics/rest_faces.hpp"
@@ -34,7 +35,7 @@ struct Faces {
         fn.push_back(-2.0);
         ft.push_back(-3.0);
     }
-    int hold(double tan_delta, bool metric = false) {
+    int hold(double tan_delta) {
         const RestFaceRowInput in{h_l.data(),
                                   h_r.data(),
                                   held_l.data(),
@@ -47,10 +48,10 @@ struct Faces {
                                   at.data(),
                                   gn.data(),
                                   gn.data(),
-                                  metric ? sn.data() : nullptr,
-                                  metric ? sn.data() : nullptr,
-                                  metric ? st.data() : nullptr,
-                                  metric ? st.data() : nullptr};
+                                  nullptr,
+                                  nullptr,
+                                  nullptr,
+                                  nullptr};
         return hold_rest_faces_row(in, {1.0, tan_delta, 1e-6}, fh.data(), fn.data(), ft.data(), 0,
                                    static_cast<int>(h_l.size()));
     }
@@ -93,17 +94,36 @@ TEST(RestFaceRows, WithoutFrictionNothingIsHeld) {
     EXPECT_TRUE(f.kept(1));
 }
 
-TEST(RestFaceRows, TheDemFramesSurfaceSlopeAddsToTheDriving) {
-    // Face 0 of the first test (drive 2 across) on a surface sloping 2 along the face's
-    // normal: the along-surface magnitude sqrt(2^2 + (2 x 2)^2) = 4.47 stays below 5;
-    // with slope 2.5 it is sqrt(4 + 25) = 5.39, beyond.
-    for (const auto& [slope, held] : {std::pair{2.0, true}, std::pair{2.5, false}}) {
-        Faces f;
-        f.add(1.0, 1.2, true, true);
-        f.sn[0] = slope;
-        f.hold(0.5, /*metric=*/true);
-        EXPECT_EQ(f.held(0), held) << "slope " << slope;
-    }
+// In the DEM frame the kernel computes each cell's driving and load from its slopes
+// (a = -g grad z / s^2, g_n = g / s; dem_coefficients.hpp) and measures the driving
+// along the surface. Two held cells of equal depth (no pressure gradient) on a plane of
+// gradient (a, b) along the face's normal and tangent: the along-surface driving is
+// g |grad z| / s and the limit tan(delta) g / s, so the face is held exactly where the
+// plane is flatter than the friction angle, |grad z| < tan(delta) = 0.5, on x- and
+// y-faces alike (a y-face's normal slope is z_y).
+TEST(RestFaceRows, TheDemFramesSlopesHoldAPlaneFlatterThanTheFrictionAngle) {
+    for (const bool x_faces : {true, false})
+        for (const auto& [a, b, held] : {std::tuple{0.45, 0.0, true}, std::tuple{0.55, 0.0, false},
+                                         std::tuple{0.0, -0.45, true}, std::tuple{0.0, -0.55, false},
+                                         std::tuple{0.3, 0.35, true}, std::tuple{-0.3, 0.42, false}}) {
+            Faces f;
+            f.add(1.0, 1.0, true, true);
+            f.sn[0] = a;
+            f.st[0] = b;
+            const RestFaceRowInput in{f.h_l.data(), f.h_r.data(), f.held_l.data(), f.held_r.data(),
+                                      f.c.data(),   f.c.data(),   nullptr,         nullptr,
+                                      nullptr,      nullptr,      nullptr,         nullptr,
+                                      f.sn.data(),  f.sn.data(),  f.st.data(),     f.st.data(),
+                                      9.81,         x_faces};
+            EXPECT_EQ(hold_rest_faces_row(in, {1.0, 0.5, 1e-6}, f.fh.data(), f.fn.data(), f.ft.data(),
+                                          0, 1),
+                      held ? 1 : 0)
+                << (x_faces ? "x" : "y") << "-face, slopes " << a << ", " << b;
+            EXPECT_EQ(f.held(0), held);
+            if (held) {
+                EXPECT_DOUBLE_EQ(f.fn[0], 0.5 * (5.0 + 5.0));  // the cells' pressure
+            }
+        }
 }
 
 // A long row between moving cells with three candidates scattered over it (the kernel

@@ -10,13 +10,13 @@
 // state of their own run on complete terrain.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <thread>
 #include <vector>
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/numerics/stepper.hpp"
-#include "avalanche/physics/dem_coefficients.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 #include "rough_valley.hpp"
@@ -44,28 +44,36 @@ void expect_same_terrain(const TerrainFields& a, const TerrainFields& b) {
     for (int k = 0; k < 12; ++k) EXPECT_TRUE(same_bits(*fa[k], *fb[k])) << names[k];
 }
 
-// The solver's per-cell passes do not read ax, ay, px, py, gn and normal_thickness in the
-// DEM frame: they compute them from sx, sy and slope_gravity (dem_coefficients.hpp). That
-// must be what dem_terrain stores, to the bit, in every cell, ghost cells included.
-TEST(TerrainOnDemand, CoefficientsFromTheSlopesAreTheStoredOnes) {
+// The DEM frame stores the slopes, not the coefficients that are functions of them
+// alone: ax, ay, px, py and gn are empty (40 bytes per cell), and every reader gets them
+// from TerrainFields::coefficients, which must give the frame's formulas (dem_frame.hpp,
+// written out here) of the stored slopes to the bit, in every cell, ghost cells
+// included; the stored normal_thickness is 1 / s of the same slopes.
+TEST(TerrainOnDemand, TheDemFrameStoresTheSlopesNotTheirCoefficients) {
     const Grid g{150, 97, 5.0, 5.0, 1000.0, 2000.0};
     DemFrameOptions complete;
     complete.on_demand = false;
     const TerrainFields t = dem_terrain(g, rough_valley(g), kG, complete);
     ASSERT_TRUE(t.has_metric);
     ASSERT_EQ(t.slope_gravity, kG);
+    for (const Field2D* f : {&t.ax, &t.ay, &t.px, &t.py, &t.gn}) EXPECT_TRUE(f->empty());
     const auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
     long cells = 0, steep = 0;
-    for (std::size_t k = 0; k < t.sx.raw().size(); ++k) {
-        const DemCoefficients c = dem_coefficients(t.sx.raw()[k], t.sy.raw()[k], t.slope_gravity);
-        ASSERT_TRUE(same(c.ax, t.ax.raw()[k]) && same(c.ay, t.ay.raw()[k]) && same(c.px, t.px.raw()[k]) &&
-                    same(c.py, t.py.raw()[k]) && same(c.gn, t.gn.raw()[k]) &&
-                    same(c.normal_thickness, t.normal_thickness.raw()[k]))
-            << "storage index " << k;
-        ++cells;
-        steep += std::abs(t.sx.raw()[k]) + std::abs(t.sy.raw()[k]) > 0.3;
-    }
-    EXPECT_EQ(cells, static_cast<long>((g.nx + 2 * kGhostLayers) * (g.ny + 2 * kGhostLayers)));
+    const int ng = kGhostLayers;
+    for (int j = -ng; j < g.ny + ng; ++j)
+        for (int i = -ng; i < g.nx + ng; ++i) {
+            const double zx = t.sx(i, j), zy = t.sy(i, j);
+            const double s2 = 1.0 + zx * zx + zy * zy;
+            const CellCoefficients c = t.coefficients(i, j);
+            ASSERT_TRUE(same(c.ax, -kG * zx / s2) && same(c.ay, -kG * zy / s2) &&
+                        same(c.px, kG / (s2 * (1.0 + zx * zx))) &&
+                        same(c.py, kG / (s2 * (1.0 + zy * zy))) && same(c.gn, kG / std::sqrt(s2)) &&
+                        same(t.normal_thickness(i, j), 1.0 / std::sqrt(s2)))
+                << "cell " << i << ", " << j;
+            ++cells;
+            steep += std::abs(zx) + std::abs(zy) > 0.3;
+        }
+    EXPECT_EQ(cells, static_cast<long>((g.nx + 2 * ng) * (g.ny + 2 * ng)));
     EXPECT_GT(steep, cells / 10);  // not a flat terrain
 }
 
@@ -95,12 +103,12 @@ TEST(TerrainOnDemand, TilesHoldTheValuesOfTheWholeGridToTheBit) {
         ASSERT_TRUE(tiles.on_demand);
         EXPECT_EQ(tiles.on_demand->tiles(), 3u * 2u);
         EXPECT_EQ(tiles.on_demand->tiles_made(), 0u);
-        EXPECT_EQ(tiles.gn(70, 40), 0.0) << "a value before its tile is made";
+        EXPECT_EQ(tiles.normal_thickness(70, 40), 0.0) << "a value before its tile is made";
         // One cell: its tile only. Then an edge tile, then the rest in another order.
         tiles.ensure(70, 71, 40, 41);
         EXPECT_EQ(tiles.on_demand->tiles_made(), 1u);
-        EXPECT_EQ(tiles.gn(70, 40), whole.gn(70, 40));
-        EXPECT_EQ(tiles.gn(60, 40), 0.0) << "the next tile's cell";
+        EXPECT_EQ(tiles.normal_thickness(70, 40), whole.normal_thickness(70, 40));
+        EXPECT_EQ(tiles.normal_thickness(60, 40), 0.0) << "the next tile's cell";
         tiles.ensure(140, 150, 90, 97);
         EXPECT_EQ(tiles.on_demand->tiles_made(), 2u);
         tiles.ensure(0, 150, 0, 60);

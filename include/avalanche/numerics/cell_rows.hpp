@@ -15,7 +15,7 @@
 namespace avalanche {
 
 // Terrain rows the sources read; curvature and metric rows are null when the
-// terrain has none.
+// terrain has none, ax, ay and gn in the DEM frame (see below).
 struct SourceRowTerrain {
     const double* ax;
     const double* ay;
@@ -26,8 +26,9 @@ struct SourceRowTerrain {
     const double* cyy;
     const double* sx;
     const double* sy;
-    // In the DEM frame (sx, sy set) ax, ay and gn are not read: they are computed from
-    // sx, sy with this g (TerrainFields::slope_gravity, dem_coefficients.hpp).
+    // In the DEM frame (sx, sy set) ax, ay and gn are not read (the terrain does not
+    // store them): they are computed from sx, sy with this g
+    // (TerrainFields::slope_gravity, dem_coefficients.hpp).
     double slope_gravity = 0.0;
 };
 
@@ -44,11 +45,20 @@ struct SourceRowParams {
 void apply_sources_row(double* h, double* hu, double* hv, const SourceRowTerrain& t,
                        const SourceRowParams& p, int i0, int i1) noexcept;
 
+// Terrain rows the CFL rate reads: the pressure coefficients px, py, or in the DEM
+// frame (sx, sy set; px, py then null) the slopes they are computed from with
+// slope_gravity (TerrainFields::slope_gravity, dem_coefficients.hpp).
+struct CflRowTerrain {
+    const double *px = nullptr, *py = nullptr;
+    const double *sx = nullptr, *sy = nullptr;
+    double slope_gravity = 0.0;
+};
+
 // max over the wet cells (h >= h_min, h > 0) of the row of
 //   (|u| + sqrt(kx px h)) / dx and (|v| + sqrt(ky py h)) / dy, or 0.
-double cfl_rate_row(const double* h, const double* hu, const double* hv, const double* px,
-                    const double* py, double kx, double ky, double dx, double dy, double h_min,
-                    int i0, int i1) noexcept;
+double cfl_rate_row(const double* h, const double* hu, const double* hv, const CflRowTerrain& t,
+                    double kx, double ky, double dx, double dy, double h_min, int i0,
+                    int i1) noexcept;
 
 // What the time loop's scan (scan_state, simulation.hpp) needs of cells i0 .. i1 - 1 of
 // one row of the state.
@@ -71,9 +81,9 @@ StateRowScan state_scan_row(const double* h, const double* hu, const double* hv,
 // (u = hu / h, v = hv / h of every cell, as state_velocity_row computes them), the
 // terrain's row r (sx, sy null in bed-fitted frames) and the row's regime
 // (regime_row), required unless the pressure is isotropic.
-// In the DEM frame (sx, sy set) px, py, gn and nt are not read: they are computed from
-// sx, sy with slope_gravity (TerrainFields::slope_gravity, dem_coefficients.hpp), the
-// same values as stored.
+// In the DEM frame (sx, sy set) px, py, gn and nt are not read (null; the terrain
+// stores none but nt): they are computed from sx, sy with slope_gravity
+// (TerrainFields::slope_gravity, dem_coefficients.hpp).
 struct PressureRowInput {
     const double *h, *u, *v;
     const double *px, *py, *gn, *nt, *sx, *sy;

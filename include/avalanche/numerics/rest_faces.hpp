@@ -36,6 +36,12 @@ struct RestFaceRowInput {
     const double *gn_l, *gn_r;        // bed-normal gravity (the friction load at rest)
     const double *sn_l, *sn_r;        // surface gradient, normal (null in bed-fitted frames)
     const double *st_l, *st_r;        // ... tangential
+    // In the DEM frame (sn, st set) an, at and gn are not read (null: the terrain does not
+    // store them): they are computed from the slopes with this g (TerrainFields::
+    // slope_gravity, dem_coefficients.hpp); x_faces says which slope is z_x (sn on
+    // x-faces, st on y-faces), so that the values are the terrain's to the bit.
+    double slope_gravity = 0.0;
+    bool x_faces = true;
 };
 
 struct RestFaceRowParams {
