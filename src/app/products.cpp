@@ -36,10 +36,16 @@ struct MapSpec {
 };
 
 // Cells never reached are nodata in the maps of maxima, so that QGIS draws only the
-// affected area over the terrain.
-std::vector<double> masked(std::span<const double> values, std::span<const double> depth, double thr) {
-    std::vector<double> out(values.size());
-    for (std::size_t k = 0; k < values.size(); ++k) out[k] = depth[k] >= thr ? values[k] : kNodata;
+// affected area over the terrain. Outside the maps' reach box no cell is reached: the
+// maps are read only inside it (HazardMaps::reach_box).
+std::vector<double> masked(std::span<const double> values, std::span<const double> depth, double thr,
+                           const Grid& g, const ActiveBox& reach) {
+    std::vector<double> out(values.size(), kNodata);
+    for (int j = reach.j0; j < reach.j1; ++j)
+        for (int i = reach.i0; i < reach.i1; ++i) {
+            const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
+            out[k] = depth[k] >= thr ? values[k] : kNodata;
+        }
     return out;
 }
 
@@ -51,6 +57,7 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     const gis::GeoGrid geo{g, in.scene.crs_wkt};
     const OutputParams& out = in.scenario.output;
     const std::span<const double> depth = in.maps.max_depth();
+    const ActiveBox& reach = in.maps.reach_box();
     // One hillshade under every quick-look, already per pixel as they draw it: the cells'
     // hillshade and the elevation's copy are freed here (each is a grid-sized array of
     // first-touched memory on a large grid; dem.tif makes its own copy when written).
@@ -65,12 +72,12 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     const std::vector<std::pair<MapSpec, Values>> maps = {
         {{"max_depth", "maximum flow depth (bed-normal)", "m", gis::depth_ramp(), gis::SampleType::float32,
           kNodata, true},
-         [&] { return masked(depth, depth, out.h_threshold); }},
+         [&] { return masked(depth, depth, out.h_threshold, g, reach); }},
         {{"max_velocity", "maximum along-surface speed", "m/s", gis::velocity_ramp()},
-         [&] { return masked(in.maps.max_speed(), depth, out.h_threshold); }},
+         [&] { return masked(in.maps.max_speed(), depth, out.h_threshold, g, reach); }},
         {{"max_pressure", "maximum impact pressure rho |u|^2", "kPa",
           gis::pressure_ramp({1.0, out.pressure_low_kpa, 10.0, out.pressure_high_kpa, 100.0})},
-         [&] { return masked(in.maps.max_pressure(), depth, out.h_threshold); }},
+         [&] { return masked(in.maps.max_pressure(), depth, out.h_threshold, g, reach); }},
         {{"arrival_time", "first time the depth reached the hazard threshold", "s",
           gis::arrival_time_ramp(std::max(in.stats.simulated_time, 1e-9)), gis::SampleType::float32,
           kNodata, false, gis::QuicklookBlock::minimum},
@@ -84,9 +91,12 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
           gis::SampleType::float32, kNodata, true},
          [&] {
              const std::span<const double> made = in.maps.deposit_depth();
-             std::vector<double> deposit(made.begin(), made.end());
-             for (double& v : deposit)
-                 if (!(v > 0.0)) v = kNodata;
+             std::vector<double> deposit(made.size(), kNodata);  // outside the reach box: none
+             for (int j = reach.j0; j < reach.j1; ++j)
+                 for (int i = reach.i0; i < reach.i1; ++i) {
+                     const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
+                     deposit[k] = made[k] > 0.0 ? made[k] : kNodata;
+                 }
              return deposit;
          }},
         {{"hazard_class", "hazard class from the maximum impact pressure (" + pressure_breaks + ")", "class",

@@ -38,8 +38,12 @@ RunoutMetrics compute_runout(const Grid& grid, const TerrainFields& terrain, Rel
     double far2 = -1.0;
     int tip_i = -1, tip_j = -1;
     const std::array<double, 2> top = top_i >= 0 ? position(top_i, top_j) : std::array<double, 2>{0, 0};
-    for (int j = 0; j < grid.ny; ++j) {
-        for (int i = 0; i < grid.nx; ++i) {
+    // Outside the maps' reach box every map is zero: nothing to add, no maximum, not
+    // reached. Inside it the cells come in the same order as over the whole grid, so the
+    // sums and the first farthest cell are the same.
+    const ActiveBox& b = maps.reach_box();
+    for (int j = b.j0; j < b.j1; ++j) {
+        for (int i = b.i0; i < b.i1; ++i) {
             const std::size_t k = static_cast<std::size_t>(j) * grid.nx + i;
             m.max_depth_m = std::max(m.max_depth_m, maps.max_depth()[k]);
             m.max_velocity_ms = std::max(m.max_velocity_ms, maps.max_speed()[k]);

@@ -157,6 +157,110 @@ TEST(HazardMaps, MaximaArrivalAndRunoutAreConsistent) {
     EXPECT_LT(m.travel_angle_deg, 30.0);
 }
 
+// The readers of whole maps (compute_runout, the products, the whole-map getters) look
+// only inside the maps' reach box: it must hold every cell where a map holds a value, also
+// after a checkpoint, or a reached cell would be lost without a sign. And the runout
+// metrics read inside it must be those of reading the whole grid, to the bit (the same
+// cells in the same order).
+TEST(HazardMaps, TheReachBoxHoldsEveryValueAlsoAfterACheckpoint) {
+    const ChuteRun r = run_small_chute();
+    const OutputParams out;
+    HazardMaps restored(r.grid, out, 2000.0);
+    CheckpointData saved;
+    r.maps->save(saved);
+    restored.restore(saved);
+    const ActiveBox b = r.maps->reach_box(), rb = restored.reach_box();
+    ASSERT_FALSE(b.empty());
+    EXPECT_LT(b.cells(), r.grid.cells() * 9 / 10) << "a box of (nearly) the whole grid would test little";
+    const auto inside = [](const ActiveBox& box, int i, int j) {
+        return i >= box.i0 && i < box.i1 && j >= box.j0 && j < box.j1;
+    };
+    const auto depth = r.maps->max_depth(), speed = r.maps->max_speed(), deposit = r.maps->deposit_depth();
+    double volume = 0.0, deepest = 0.0, fastest = 0.0;
+    long reached = 0, valued = 0;
+    for (int j = 0; j < r.grid.ny; ++j)
+        for (int i = 0; i < r.grid.nx; ++i) {
+            const std::size_t k = static_cast<std::size_t>(j) * r.grid.nx + i;
+            const bool value = depth[k] != 0.0 || speed[k] != 0.0 || deposit[k] != 0.0;
+            valued += value;
+            if (value) {
+                ASSERT_TRUE(inside(b, i, j)) << "cell " << i << ", " << j << " outside the reach box";
+            }
+            if (depth[k] != 0.0 || speed[k] != 0.0) {
+                ASSERT_TRUE(inside(rb, i, j)) << "cell " << i << ", " << j << " outside the restored box";
+            }
+            ASSERT_EQ(restored.max_depth()[k], depth[k]);
+            // The whole grid, as compute_runout read it before it read the box only.
+            deepest = std::max(deepest, depth[k]);
+            fastest = std::max(fastest, speed[k]);
+            if (deposit[k] != 0.0) volume += deposit[k] / r.terrain.normal_thickness(i, j) * r.grid.cell_area();
+            reached += depth[k] >= out.h_threshold;
+        }
+    ASSERT_GT(valued, 50);
+    const auto position = [&](int i, int j) {
+        return std::array<double, 2>{r.chute.horizontal_distance(r.grid.x_center(i)), r.grid.y_center(j)};
+    };
+    const RunoutMetrics m = compute_runout(r.grid, r.terrain, r.initial, *r.maps, out, position,
+                                           r.grid.cell_area());
+    EXPECT_EQ(m.deposit_volume_m3, volume);
+    EXPECT_EQ(m.max_depth_m, deepest);
+    EXPECT_EQ(m.max_velocity_ms, fastest);
+    EXPECT_EQ(m.affected_area_m2, static_cast<double>(reached) * r.grid.cell_area());
+    // The restored maps (no deposit: it is not checkpointed) give the same reach.
+    const RunoutMetrics mr = compute_runout(r.grid, r.terrain, r.initial, restored, out, position,
+                                            r.grid.cell_area());
+    EXPECT_EQ(mr.runout_length_m, m.runout_length_m);
+    EXPECT_EQ(mr.affected_area_m2, m.affected_area_m2);
+    EXPECT_EQ(mr.max_velocity_ms, m.max_velocity_ms);
+}
+
+// A flow that leaves the cells it reached: a patch at rest in one corner at the start, in
+// the opposite corner (only) afterwards and at the end. The reach box must hold both
+// patches, and the whole-map products must show both: the box of the last step alone would
+// lose the first.
+TEST(HazardMaps, TheReachBoxHoldsCellsTheFlowHasLeft) {
+    const Grid g{60, 40, 1.0, 1.0};
+    TerrainFields terrain;
+    terrain.allocate(g, false, false);
+    const OutputParams out;
+    HazardMaps maps(g, out, 2000.0);
+    State s(g);
+    const auto patch = [&](int i0, int j0, double h, double hu) {
+        for (int j = 0; j < g.ny; ++j)
+            for (int i = 0; i < g.nx; ++i) {
+                const bool in = i >= i0 && i < i0 + 3 && j >= j0 && j < j0 + 2;
+                s.h(i, j) = in ? h : 0.0;
+                s.hu(i, j) = in ? hu : 0.0;
+            }
+    };
+    const ActiveBox first{1, 4, 2, 4}, second{50, 53, 30, 32};
+    patch(1, 2, 0.5, 1.0);
+    maps.on_start(SimulationView{g, terrain, s, 0.0, 0, first});
+    patch(50, 30, 0.4, 0.8);
+    maps.on_step(SimulationView{g, terrain, s, 1.0, 1, second});
+    maps.on_end(SimulationView{g, terrain, s, 1.0, 1, second});
+    const ActiveBox b = maps.reach_box();
+    EXPECT_TRUE(b.i0 <= 1 && b.i1 >= 53 && b.j0 <= 2 && b.j1 >= 32)
+        << "reach box " << b.i0 << ".." << b.i1 << " x " << b.j0 << ".." << b.j1;
+    const std::vector<double> arrival = maps.arrival_time(), pressure = maps.max_pressure();
+    const std::vector<std::uint8_t> classes = maps.hazard_classes();
+    const std::size_t a = 2 * 60 + 1, c = 30 * 60 + 50;  // a cell of each patch
+    EXPECT_EQ(arrival[a], 0.0);
+    EXPECT_EQ(arrival[c], 1.0);
+    EXPECT_DOUBLE_EQ(pressure[a], 2.0 * 2.0 * 2.0);  // rho |u|^2 in kPa, u = hu / h = 2 m/s
+    EXPECT_DOUBLE_EQ(pressure[c], 2.0 * 2.0 * 2.0);
+    EXPECT_NE(classes[a], 0);
+    EXPECT_NE(classes[c], 0);
+    EXPECT_EQ(arrival[10 * 60 + 30], HazardMaps::kNotReached);  // between the patches
+    EXPECT_EQ(classes[10 * 60 + 30], 0);
+    const RunoutMetrics m = compute_runout(
+        g, terrain, ReleaseTop{1, 2}, maps, out,
+        [&](int i, int j) { return std::array<double, 2>{g.x_center(i), g.y_center(j)}; }, 1.0);
+    EXPECT_EQ(m.affected_area_m2, 12.0);  // both patches, 6 cells each
+    EXPECT_DOUBLE_EQ(m.max_depth_m, 0.5);
+    EXPECT_DOUBLE_EQ(m.deposit_volume_m3, 6 * 0.4);  // the second patch, at the end
+}
+
 // On a large DEM the maps hold memory only where the flow went: made, read whole and
 // classified, the maps of a 2000 x 2000 grid (32 MB each) stay unwritten.
 TEST(HazardMaps, MapsOfALargeGridHoldNoMemoryUntilTheFlowReachesThem) {

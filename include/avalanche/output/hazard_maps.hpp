@@ -13,6 +13,7 @@
 
 #include "avalanche/core/field_storage.hpp"
 #include "avalanche/core/observer.hpp"
+#include "avalanche/numerics/active_box.hpp"
 #include "avalanche/output/output_params.hpp"
 
 namespace avalanche {
@@ -56,6 +57,13 @@ public:
     [[nodiscard]] std::vector<double> arrival_time() const;
     [[nodiscard]] std::vector<std::uint8_t> hazard_classes() const;
     [[nodiscard]] const Grid& grid() const { return grid_; }
+    // A box that holds every cell where a map holds a value (the union of the active
+    // boxes the maps were accumulated over; empty before any): outside it every map
+    // reads zero, i.e. not reached. Readers of whole maps look only inside it -- on a
+    // large DEM the rest of the maps' memory is never touched, and a first read of an
+    // untouched page costs a page fault (docs/performance.md, "Maps read where the flow
+    // went").
+    [[nodiscard]] const ActiveBox& reach_box() const { return reach_box_; }
 
     static constexpr double kNotReached = -1.0;
 
@@ -73,8 +81,12 @@ private:
     Grid grid_;
     OutputParams params_;
     double density_;
+    // Grows reach_box_ to hold cells [i0, i1) x [j0, j1).
+    void extend_reach_box(int i0, int i1, int j0, int j1);
+
     // arrival_ holds a time only where reached(k); elsewhere it stays 0.
     CellVector<double> max_depth_, max_speed_, arrival_, deposit_;
+    ActiveBox reach_box_;
 };
 
 }  // namespace avalanche
