@@ -41,11 +41,9 @@ struct MapSpec {
 std::vector<double> masked(std::span<const double> values, std::span<const double> depth, double thr,
                            const Grid& g, const ActiveBox& reach) {
     std::vector<double> out(values.size(), kNodata);
-    for (int j = reach.j0; j < reach.j1; ++j)
-        for (int i = reach.i0; i < reach.i1; ++i) {
-            const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
-            out[k] = depth[k] >= thr ? values[k] : kNodata;
-        }
+    for_each_cell(reach, g.nx, [&](int, int, std::size_t k) {
+        out[k] = depth[k] >= thr ? values[k] : kNodata;
+    });
     return out;
 }
 
@@ -92,11 +90,9 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
          [&] {
              const std::span<const double> made = in.maps.deposit_depth();
              std::vector<double> deposit(made.size(), kNodata);  // outside the reach box: none
-             for (int j = reach.j0; j < reach.j1; ++j)
-                 for (int i = reach.i0; i < reach.i1; ++i) {
-                     const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
-                     deposit[k] = made[k] > 0.0 ? made[k] : kNodata;
-                 }
+             for_each_cell(reach, g.nx, [&](int, int, std::size_t k) {
+                 deposit[k] = made[k] > 0.0 ? made[k] : kNodata;
+             });
              return deposit;
          }},
         {{"hazard_class", "hazard class from the maximum impact pressure (" + pressure_breaks + ")", "class",

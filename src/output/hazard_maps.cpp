@@ -33,37 +33,19 @@ HazardMaps::HazardMaps(const Grid& grid, const OutputParams& params, double dens
       arrival_(grid.cells()),
       deposit_(grid.cells()) {}
 
-void HazardMaps::extend_reach_box(int i0, int i1, int j0, int j1) {
-    if (i1 <= i0 || j1 <= j0) return;
-    if (reach_box_.empty()) {
-        reach_box_ = {i0, i1, j0, j1};
-        return;
-    }
-    reach_box_ = {std::min(reach_box_.i0, i0), std::max(reach_box_.i1, i1), std::min(reach_box_.j0, j0),
-                  std::max(reach_box_.j1, j1)};
-}
-
 // Outside reach_box_ the maps hold zeros: pressure_kpa(0) = +0, which the vector starts
 // with.
 std::vector<double> HazardMaps::max_pressure() const {
     std::vector<double> out(max_speed_.size());
-    const ActiveBox& b = reach_box_;
-    for (int j = b.j0; j < b.j1; ++j)
-        for (int i = b.i0; i < b.i1; ++i) {
-            const std::size_t k = static_cast<std::size_t>(j) * grid_.nx + i;
-            out[k] = pressure_kpa(max_speed_[k]);
-        }
+    for_each_cell(reach_box_, grid_.nx, [&](int, int, std::size_t k) {
+        out[k] = pressure_kpa(max_speed_[k]);
+    });
     return out;
 }
 
 std::vector<double> HazardMaps::arrival_time() const {
     std::vector<double> out(arrival_.size(), kNotReached);
-    const ActiveBox& b = reach_box_;
-    for (int j = b.j0; j < b.j1; ++j)
-        for (int i = b.i0; i < b.i1; ++i) {
-            const std::size_t k = static_cast<std::size_t>(j) * grid_.nx + i;
-            out[k] = arrival_time(k);
-        }
+    for_each_cell(reach_box_, grid_.nx, [&](int, int, std::size_t k) { out[k] = arrival_time(k); });
     return out;
 }
 
@@ -82,7 +64,7 @@ void HazardMaps::restore(const CheckpointData& c) {
     const auto& arrival = c.real("hazard_maps/arrival_time", n);
     // Fresh maps written only where the flow was, as the run left them.
     CellVector<double> d(depth.size()), s(speed.size()), a(arrival.size());
-    ActiveBox box{grid_.nx, -1, grid_.ny, -1};
+    ActiveBox box;
     for (std::size_t k = 0; k < depth.size(); ++k) {
         if (depth[k] != 0.0) d[k] = depth[k];
         if (speed[k] != 0.0) s[k] = speed[k];
@@ -90,17 +72,17 @@ void HazardMaps::restore(const CheckpointData& c) {
         if (depth[k] != 0.0 || speed[k] != 0.0) {
             const int i = static_cast<int>(k % static_cast<std::size_t>(grid_.nx));
             const int j = static_cast<int>(k / static_cast<std::size_t>(grid_.nx));
-            box = {std::min(box.i0, i), std::max(box.i1, i + 1), std::min(box.j0, j), std::max(box.j1, j + 1)};
+            box = box.united({i, i + 1, j, j + 1});
         }
     }
     max_depth_ = std::move(d);
     max_speed_ = std::move(s);
     arrival_ = std::move(a);
-    reach_box_ = box.empty() ? ActiveBox{} : box;
+    reach_box_ = box;
 }
 
 void HazardMaps::accumulate(const SimulationView& v, int i0, int i1, int j0, int j1) {
-    extend_reach_box(i0, i1, j0, j1);
+    reach_box_ = reach_box_.united({i0, i1, j0, j1});
     const double thr = params_.h_threshold;
     const bool threaded = static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(j1 - j0) >= 20000;
 #pragma omp parallel for schedule(static) if (threaded)
@@ -135,7 +117,7 @@ void HazardMaps::on_step(const SimulationView& v) {
 
 void HazardMaps::on_end(const SimulationView& v) {
     // deposit_ starts as zeros; only the active box can hold material (on_start).
-    extend_reach_box(v.box.i0, v.box.i1, v.box.j0, v.box.j1);
+    reach_box_ = reach_box_.united(v.box);
     for (int j = v.box.j0; j < v.box.j1; ++j)
         for (int i = v.box.i0; i < v.box.i1; ++i) {
             const double hn = v.state.h(i, j) * v.terrain.normal_thickness(i, j);
@@ -147,12 +129,9 @@ void HazardMaps::on_end(const SimulationView& v) {
 // Outside reach_box_ no cell is reached: HazardClass::none, the vector's zeros.
 std::vector<std::uint8_t> HazardMaps::hazard_classes() const {
     std::vector<std::uint8_t> out(grid_.cells());
-    const ActiveBox& b = reach_box_;
-    for (int j = b.j0; j < b.j1; ++j)
-        for (int i = b.i0; i < b.i1; ++i) {
-            const std::size_t k = static_cast<std::size_t>(j) * grid_.nx + i;
-            out[k] = static_cast<std::uint8_t>(classify(max_depth_[k], max_pressure(k), params_));
-        }
+    for_each_cell(reach_box_, grid_.nx, [&](int, int, std::size_t k) {
+        out[k] = static_cast<std::uint8_t>(classify(max_depth_[k], max_pressure(k), params_));
+    });
     return out;
 }
 

@@ -41,29 +41,25 @@ RunoutMetrics compute_runout(const Grid& grid, const TerrainFields& terrain, Rel
     // Outside the maps' reach box every map is zero: nothing to add, no maximum, not
     // reached. Inside it the cells come in the same order as over the whole grid, so the
     // sums and the first farthest cell are the same.
-    const ActiveBox& b = maps.reach_box();
-    for (int j = b.j0; j < b.j1; ++j) {
-        for (int i = b.i0; i < b.i1; ++i) {
-            const std::size_t k = static_cast<std::size_t>(j) * grid.nx + i;
-            m.max_depth_m = std::max(m.max_depth_m, maps.max_depth()[k]);
-            m.max_velocity_ms = std::max(m.max_velocity_ms, maps.max_speed()[k]);
-            m.max_pressure_kpa = std::max(m.max_pressure_kpa, maps.max_pressure(k));
-            // Only cells with a deposit: the flow reached them, so their terrain is made
-            // (terrain.hpp); elsewhere the term was 0 / normal_thickness = 0.
-            if (maps.deposit_depth()[k] != 0.0)
-                m.deposit_volume_m3 += maps.deposit_depth()[k] / terrain.normal_thickness(i, j) * cell_area_m2;
-            if (maps.max_depth()[k] < thr) continue;
-            ++reached;
-            if (top_i < 0) continue;
-            const auto p = position(i, j);
-            const double d2 = (p[0] - top[0]) * (p[0] - top[0]) + (p[1] - top[1]) * (p[1] - top[1]);
-            if (d2 > far2) {
-                far2 = d2;
-                tip_i = i;
-                tip_j = j;
-            }
+    for_each_cell(maps.reach_box(), grid.nx, [&](int i, int j, std::size_t k) {
+        m.max_depth_m = std::max(m.max_depth_m, maps.max_depth()[k]);
+        m.max_velocity_ms = std::max(m.max_velocity_ms, maps.max_speed()[k]);
+        m.max_pressure_kpa = std::max(m.max_pressure_kpa, maps.max_pressure(k));
+        // Only cells with a deposit: the flow reached them, so their terrain is made
+        // (terrain.hpp); elsewhere the term was 0 / normal_thickness = 0.
+        if (maps.deposit_depth()[k] != 0.0)
+            m.deposit_volume_m3 += maps.deposit_depth()[k] / terrain.normal_thickness(i, j) * cell_area_m2;
+        if (maps.max_depth()[k] < thr) return;
+        ++reached;
+        if (top_i < 0) return;
+        const auto p = position(i, j);
+        const double d2 = (p[0] - top[0]) * (p[0] - top[0]) + (p[1] - top[1]) * (p[1] - top[1]);
+        if (d2 > far2) {
+            far2 = d2;
+            tip_i = i;
+            tip_j = j;
         }
-    }
+    });
     m.affected_area_m2 = static_cast<double>(reached) * cell_area_m2;
     if (top_i < 0 || tip_i < 0) return m;
     m.top_xy = top;

@@ -105,7 +105,6 @@ void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const De
                 raw[2][k] = dd.zyy / s;
             }
             if (i < i0 || i >= i1 || j < j0 || j >= j1) continue;  // the smoothing's halo
-            // The solver's passes compute the same from sx, sy (dem_coefficients.hpp).
             // ax, ay, px, py and gn are not stored: their readers compute them from sx, sy
             // (TerrainFields::coefficients).
             t.sx(i, j) = dd.zx;

@@ -21,7 +21,22 @@ struct ActiveBox {
         if (empty()) return *this;
         return {std::max(0, i0 - m), std::min(nx, i1 + m), std::max(0, j0 - m), std::min(ny, j1 + m)};
     }
+    // The smallest box holding both (an empty box holds nothing).
+    [[nodiscard]] ActiveBox united(const ActiveBox& o) const {
+        if (o.empty()) return *this;
+        if (empty()) return o;
+        return {std::min(i0, o.i0), std::max(i1, o.i1), std::min(j0, o.j0), std::max(j1, o.j1)};
+    }
 };
+
+// f(i, j, k) for every cell of box b, row by row, with k = j * nx + i the cell's index in
+// a dense grid of nx columns (the hazard maps' layout).
+template <class F>
+void for_each_cell(const ActiveBox& b, int nx, F&& f) {
+    for (int j = b.j0; j < b.j1; ++j)
+        for (int i = b.i0; i < b.i1; ++i)
+            f(i, j, static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + i);
+}
 
 // Where thread t of n starts in a list of strips: `before[k]` is the work (cells) of
 // the strips before strip k, before.back() the whole; the strip boundary nearest to

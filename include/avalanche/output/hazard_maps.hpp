@@ -81,9 +81,6 @@ private:
     Grid grid_;
     OutputParams params_;
     double density_;
-    // Grows reach_box_ to hold cells [i0, i1) x [j0, j1).
-    void extend_reach_box(int i0, int i1, int j0, int j1);
-
     // arrival_ holds a time only where reached(k); elsewhere it stays 0.
     CellVector<double> max_depth_, max_speed_, arrival_, deposit_;
     ActiveBox reach_box_;

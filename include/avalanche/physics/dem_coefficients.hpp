@@ -1,10 +1,11 @@
 #pragma once
 // The DEM frame's per-cell coefficients (dem_frame.hpp) as functions of the bed's slope
-// (z_x, z_y) alone. dem_terrain stores them for every cell it makes; the solver's
-// per-cell passes compute them from the stored slopes instead of reading them (the
-// same expressions, so the same bits: 32-48 bytes less of the grid read per cell and
-// pass, which those passes wait for; docs/performance.md, "The DEM frame's
-// coefficients from the slopes").
+// (z_x, z_y) alone. dem_terrain stores the slopes and, of these, only the normal
+// thickness (the products read it cell by cell); every reader of the others computes
+// them from the stored slopes (TerrainFields::coefficients, the solver's row kernels):
+// fewer bytes of the grid per cell and pass, which those passes wait for, and 40 bytes
+// per cell less to keep (docs/performance.md, "The DEM frame's coefficients from the
+// slopes", "The DEM frame stores its slopes").
 #include <cmath>
 
 namespace avalanche {
