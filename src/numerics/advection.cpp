@@ -30,6 +30,7 @@
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/face_flux_rows.hpp"
 #include "avalanche/numerics/stepper.hpp"
+#include "avalanche/numerics/strip_claims.hpp"
 #include "avalanche/numerics/update_rows.hpp"
 
 namespace avalanche {
@@ -606,15 +607,16 @@ void Stepper::advect(State& s, double tau) {
         }
     }
     const int nstrips = static_cast<int>(strips.size());
-    // Thread t of n takes the strips from the strip boundary nearest to t / n of the
+    // Thread t of n starts on the strips from the strip boundary nearest to t / n of the
     // cells (share_start): a whole avaKot run at 5 m on two threads spent 7.0-7.5 s in
-    // its time loop with the first boundary at or beyond, 6.5-6.9 s now. Weighting the
-    // strips by their cost per cell, timed at the last advection, gained nothing more
-    // there. Cutting the strip at the share into two (shares even to a row) changed the
-    // run's maps in the last bits (not traced: a strip of a few rows at a segment's end,
-    // whose waiting rows and carried rows are sized for strips of kStripRows, is a
-    // suspect), so strips keep the rows make_bands gives them.
-    const auto start_of = [&](int t, int n) { return share_start(cells_before, t, n); };
+    // its time loop with the first boundary at or beyond, 6.5-6.9 s now. Cutting the
+    // strip at the share into two (shares even to a row) changed the run's maps in the
+    // last bits (not traced: a strip of a few rows at a segment's end, whose waiting
+    // rows and carried rows are sized for strips of kStripRows, is a suspect), so strips
+    // keep the rows make_bands gives them. A thread whose share is done takes half of
+    // what another has left (StripClaims): the cores of this VM run at different speeds.
+    // (Weighting the strips by their cost per cell, timed at the last advection, gained
+    // nothing on the avaKot run.)
     // The edge faces' outflow of the rows and columns no band reaches is zero.
     const int nx = grid_.nx, ny = grid_.ny;
     if (b.i0 == 0) std::fill(edge_outflow_[0].begin() + b.j0, edge_outflow_[0].begin() + b.j1, 0.0);
@@ -622,32 +624,44 @@ void Stepper::advect(State& s, double tau) {
     if (b.j0 == 0) std::fill(edge_outflow_[2].begin() + b.i0, edge_outflow_[2].begin() + b.i1, 0.0);
     if (b.j1 == ny) std::fill(edge_outflow_[3].begin() + b.i0, edge_outflow_[3].begin() + b.i1, 0.0);
 
-    // Each thread takes consecutive strips; its strips of one band are a segment, whose
-    // strips hand their stage rows on (advect_strip) and whose first strip computes
-    // them afresh. A segment's first and last strips share rows with the neighbouring
-    // segments, whose strips read the old state there: their updated rows wait in the
-    // thread's buffers until every segment is done. The other strips write theirs into
-    // s at once (advect_strip, step 7), so no second state is kept.
+    // Each thread claims strips in row order; its consecutive strips of one band are a
+    // segment, whose strips hand their stage rows on (advect_strip) and whose first strip
+    // computes them afresh. A segment's first and last strips share rows with the
+    // neighbouring segments, whose strips read the old state there: their updated rows
+    // wait in the thread's buffers until every segment is done. The other strips write
+    // theirs into s at once (advect_strip, step 7), so no second state is kept.
+    StripClaims claims;
 #pragma omp parallel if (threaded_)
     {
         const int n = omp_get_num_threads(), t = omp_get_thread_num();
-        const int first = start_of(t, n), last = start_of(t + 1, n);
+#pragma omp single
+        {
+            std::vector<int> first(static_cast<std::size_t>(n) + 1);
+            for (int q = 0; q <= n; ++q)
+                first[static_cast<std::size_t>(q)] = all_strips_to_first_thread_ ? (q == 0 ? 0 : nstrips)
+                                                                                 : share_start(cells_before, q, n);
+            claims.reset(first);
+        }
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
         w.waiting_used = 0;
         w.held_rows.clear();
         w.held_cols.clear();
-        for (int k = first; k < last; ++k) {
+        const auto band_of = [&](int q) { return strips[static_cast<std::size_t>(q)].band; };
+        for (StripClaims::Claim c = claims.next(t); c.strip >= 0; c = claims.next(t)) {
+            const int k = c.strip;
             const Strip& st = strips[static_cast<std::size_t>(k)];
-            const auto band_of = [&](int q) { return strips[static_cast<std::size_t>(q)].band; };
-            const bool starts = k == first || band_of(k - 1) != st.band;
-            const bool ends = k == last - 1 || band_of(k + 1) != st.band;
+            const bool starts = c.starts || k == 0 || band_of(k - 1) != st.band;
+            const bool ends = c.ends || k + 1 == nstrips || band_of(k + 1) != st.band;
             if (starts) {
                 w.carried_for = std::numeric_limits<int>::min();  // a new segment
-                int e = k;
-                while (e + 1 < last && band_of(e + 1) == st.band) ++e;
                 w.block_j0 = st.j0;
-                w.block_j1 = strips[static_cast<std::size_t>(e)].j1;
             }
+            // The segment's end as far as this strip's regime rows need it
+            // (keep_regime_row): a strip that does not end its segment is followed by
+            // the same thread's next strip (StripClaims), and the rows it computes lie
+            // at most kRegimeHeldRows short of that strip's end only where that strip is
+            // the box's last, shorter one, which ends the segment.
+            w.block_j1 = ends ? st.j1 : strips[static_cast<std::size_t>(k + 1)].j1;
             StripBuffers::WaitingRows* wait = nullptr;
             if ((starts && k > 0) || (ends && k + 1 < nstrips)) {
                 if (static_cast<int>(w.waiting.size()) <= w.waiting_used) w.waiting.emplace_back();
@@ -678,6 +692,7 @@ void Stepper::advect(State& s, double tau) {
             }
         }
     }
+    strip_steals_ += static_cast<std::uint64_t>(claims.steals());
     // Volume through the open edges: west, east, south, north, in that order.
     double out = 0.0;
     if (b.i0 == 0)

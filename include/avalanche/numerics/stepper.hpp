@@ -90,6 +90,12 @@ class Stepper {
     // compare the two to the bit (test_active_bands.cpp).
     [[nodiscard]] const std::vector<ActiveBox>& bands() const { return bands_; }
     void set_whole_box_advection(bool whole) { whole_box_advection_ = whole; }
+    // Shares of strips the advection's threads took from one another (StripClaims), over
+    // every advection so far; and a switch that gives every strip to the first thread
+    // at the start of each advection, so that the others begin by taking from it: for
+    // the tests that compare those runs to one thread's, to the bit.
+    [[nodiscard]] std::uint64_t strip_steals() const { return strip_steals_; }
+    void set_all_strips_to_first_thread(bool all) { all_strips_to_first_thread_ = all; }
 
     // The operators, public for tests of the splitting.
     void advect(State& s, double tau);
@@ -222,6 +228,8 @@ class Stepper {
     // work on these too (stepper.cpp).
     std::vector<std::pair<int, int>> band_columns_;
     bool whole_box_advection_ = false;
+    bool all_strips_to_first_thread_ = false;
+    std::uint64_t strip_steals_ = 0;
     // Per grid row, the first and last column with h > 0 (last < first: none), set by
     // shrink_box_to_wet for the rows it searched.
     std::vector<int> row_first_, row_last_;

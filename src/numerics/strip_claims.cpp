@@ -1,0 +1,49 @@
+#include "avalanche/numerics/strip_claims.hpp"
+
+namespace avalanche {
+
+void StripClaims::reset(std::span<const int> first) {
+    const std::lock_guard lock(mutex_);
+    shares_.clear();
+    for (std::size_t t = 0; t + 1 < first.size(); ++t) shares_.push_back({first[t], first[t + 1], true});
+    steals_ = 0;
+}
+
+StripClaims::Claim StripClaims::next(int t) {
+    const std::lock_guard lock(mutex_);
+    Share& own = shares_[static_cast<std::size_t>(t)];
+    if (own.next >= own.end) {
+        // Steal: the upper half of the strips of the thread with the most left beyond
+        // the one it claims next, which stays reserved to it (see the header). A single
+        // such strip is left to its owner: a share of one strip recomputes half a strip
+        // of stage rows and keeps all its rows back, for little gained at the very end.
+        std::size_t victim = shares_.size();
+        int most = 1;
+        for (std::size_t v = 0; v < shares_.size(); ++v) {
+            const int beyond = shares_[v].end - shares_[v].next - 1;
+            if (beyond > most) {
+                most = beyond;
+                victim = v;
+            }
+        }
+        if (victim == shares_.size()) return {};
+        Share& from = shares_[victim];
+        const int split = from.end - most / 2;
+        own = {split, from.end, true};
+        from.end = split;
+        ++steals_;
+    }
+    Claim c;
+    c.strip = own.next++;
+    c.starts = own.fresh;
+    c.ends = own.next == own.end;
+    own.fresh = false;
+    return c;
+}
+
+int StripClaims::steals() const {
+    const std::lock_guard lock(mutex_);
+    return steals_;
+}
+
+}  // namespace avalanche

@@ -1,0 +1,120 @@
+// StripClaims (strip_claims.hpp): how an advection's threads claim strips, and take
+// half of what another thread has left once their own share is done.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+#include "avalanche/numerics/strip_claims.hpp"
+
+namespace avalanche {
+namespace {
+
+struct Seen {
+    int strip;
+    bool starts, ends;
+};
+
+bool operator==(const Seen& a, const StripClaims::Claim& b) {
+    return a.strip == b.strip && a.starts == b.starts && a.ends == b.ends;
+}
+
+// Without taking: each thread's share in order, its first strip starting it and its
+// last ending it; then nothing.
+TEST(StripClaims, EachThreadClaimsItsShareInOrder) {
+    StripClaims c;
+    c.reset(std::vector<int>{0, 3, 5});
+    EXPECT_TRUE((Seen{0, true, false} == c.next(0)));
+    EXPECT_TRUE((Seen{3, true, false} == c.next(1)));
+    EXPECT_TRUE((Seen{1, false, false} == c.next(0)));
+    EXPECT_TRUE((Seen{4, false, true} == c.next(1)));
+    EXPECT_TRUE((Seen{2, false, true} == c.next(0)));
+    // Both shares done; thread 1 finds nothing to take: the strip thread 0 claimed last
+    // ended its share.
+    EXPECT_EQ(c.next(1).strip, -1);
+    EXPECT_EQ(c.next(0).strip, -1);
+    EXPECT_EQ(c.steals(), 0);
+}
+
+// A thread with nothing left takes the upper half of the strips beyond the one the
+// thread with the most left claims next: that one stays its owner's.
+TEST(StripClaims, ATakerLeavesTheOwnersNextStrip) {
+    StripClaims c;
+    c.reset(std::vector<int>{0, 10, 10});  // every strip to thread 0
+    EXPECT_TRUE((Seen{0, true, false} == c.next(0)));  // next is 1; 2 .. 9 beyond it
+    EXPECT_TRUE((Seen{6, true, false} == c.next(1)));  // took 6 .. 9, half of the 8
+    EXPECT_EQ(c.steals(), 1);
+    // Thread 0 goes on from 1 and its share now ends at 5.
+    for (int k = 1; k < 5; ++k) EXPECT_TRUE((Seen{k, false, false} == c.next(0))) << k;
+    // After 4 thread 0's next is 5, the end of its share.
+    EXPECT_TRUE((Seen{5, false, true} == c.next(0)));
+    // Thread 1 claimed 6: 7 is reserved to it and 8, 9 lie beyond; thread 0 takes 9.
+    EXPECT_TRUE((Seen{9, true, true} == c.next(0)));
+    EXPECT_TRUE((Seen{7, false, false} == c.next(1)));
+    EXPECT_TRUE((Seen{8, false, true} == c.next(1)));  // its share now ends at 8
+    EXPECT_EQ(c.next(1).strip, -1);
+    EXPECT_EQ(c.next(0).strip, -1);
+    EXPECT_EQ(c.steals(), 2);
+}
+
+// One strip beyond an owner's next is left to it: nothing is taken.
+TEST(StripClaims, OneStripBeyondTheNextIsLeftToItsOwner) {
+    StripClaims c;
+    c.reset(std::vector<int>{0, 3, 3});
+    EXPECT_TRUE((Seen{0, true, false} == c.next(0)));  // next 1, strip 2 beyond
+    EXPECT_EQ(c.next(1).strip, -1);
+    EXPECT_TRUE((Seen{1, false, false} == c.next(0)));
+    EXPECT_TRUE((Seen{2, false, true} == c.next(0)));
+    EXPECT_EQ(c.steals(), 0);
+}
+
+// Threads claiming at once: every strip is claimed exactly once; each thread's claims
+// come as runs of consecutive strips, each run opened by a claim that starts it and
+// closed by one that ends it, and a claim that does not end its run is followed by the
+// same thread's claim of the next strip (the guarantee the advection's segments need).
+TEST(StripClaims, ConcurrentClaimsCoverEveryStripOnceInRuns) {
+    constexpr int kStrips = 200, kThreads = 4;
+    int taken_from_the_first = 0;
+    for (int round = 0; round < 20; ++round) {
+        StripClaims c;
+        std::vector<int> first{0, kStrips, kStrips, kStrips, kStrips};  // all to thread 0
+        if (round % 2) first = {0, 50, 100, 150, kStrips};
+        c.reset(first);
+        std::vector<std::vector<StripClaims::Claim>> got(kThreads);
+        std::vector<std::thread> team;
+        for (int t = 0; t < kThreads; ++t)
+            team.emplace_back([&, t] {
+                for (StripClaims::Claim k = c.next(t); k.strip >= 0; k = c.next(t)) {
+                    got[static_cast<std::size_t>(t)].push_back(k);
+                    // Thread 0 is the slow core: the others must take from it.
+                    if (t == 0)
+                        std::this_thread::sleep_for(std::chrono::microseconds(20));
+                    else
+                        std::this_thread::yield();
+                }
+            });
+        for (auto& th : team) th.join();
+        if (round % 2 == 0) taken_from_the_first += c.steals();
+        std::vector<int> count(kStrips, 0);
+        for (const auto& claims : got) {
+            bool open = false;
+            for (std::size_t q = 0; q < claims.size(); ++q) {
+                const StripClaims::Claim& k = claims[q];
+                ++count[static_cast<std::size_t>(k.strip)];
+                EXPECT_EQ(k.starts, !open) << "round " << round << " strip " << k.strip;
+                if (open) EXPECT_EQ(k.strip, claims[q - 1].strip + 1) << "round " << round;
+                open = !k.ends;
+            }
+            EXPECT_FALSE(open) << "round " << round;  // every run ended
+        }
+        EXPECT_TRUE(std::all_of(count.begin(), count.end(), [](int n) { return n == 1; })) << "round " << round;
+    }
+    // The runs checked include taken shares (every strip starts as thread 0's in half
+    // the rounds, and it claims them slowly).
+    EXPECT_GT(taken_from_the_first, 0);
+}
+
+}  // namespace
+}  // namespace avalanche
