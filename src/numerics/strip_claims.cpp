@@ -13,12 +13,13 @@ StripClaims::Claim StripClaims::next(int t) {
     const std::lock_guard lock(mutex_);
     Share& own = shares_[static_cast<std::size_t>(t)];
     if (own.next >= own.end) {
-        // Steal: the upper half of the strips of the thread with the most left beyond
-        // the one it claims next, which stays reserved to it (see the header). A single
-        // such strip is left to its owner: a share of one strip recomputes half a strip
-        // of stage rows and keeps all its rows back, for little gained at the very end.
+        // Steal: the upper half (rounded up) of the strips of the thread with the most
+        // left beyond the one it claims next, which stays reserved to it (see the
+        // header). Also a single such strip: its share of one strip recomputes about
+        // half a strip of stage rows and keeps all its rows back, but its owner ends a
+        // strip sooner while the thief would only wait.
         std::size_t victim = shares_.size();
-        int most = 1;
+        int most = 0;
         for (std::size_t v = 0; v < shares_.size(); ++v) {
             const int beyond = shares_[v].end - shares_[v].next - 1;
             if (beyond > most) {
@@ -28,7 +29,7 @@ StripClaims::Claim StripClaims::next(int t) {
         }
         if (victim == shares_.size()) return {};
         Share& from = shares_[victim];
-        const int split = from.end - most / 2;
+        const int split = from.end - (most + 1) / 2;
         own = {split, from.end, true};
         from.end = split;
         ++steals_;

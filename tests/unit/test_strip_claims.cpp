@@ -38,8 +38,8 @@ TEST(StripClaims, EachThreadClaimsItsShareInOrder) {
     EXPECT_EQ(c.steals(), 0);
 }
 
-// A thread with nothing left takes the upper half of the strips beyond the one the
-// thread with the most left claims next: that one stays its owner's.
+// A thread with nothing left takes the upper half (rounded up) of the strips beyond the
+// one the thread with the most left claims next: that one stays its owner's.
 TEST(StripClaims, ATakerLeavesTheOwnersNextStrip) {
     StripClaims c;
     c.reset(std::vector<int>{0, 10, 10});  // every strip to thread 0
@@ -59,15 +59,16 @@ TEST(StripClaims, ATakerLeavesTheOwnersNextStrip) {
     EXPECT_EQ(c.steals(), 2);
 }
 
-// One strip beyond an owner's next is left to it: nothing is taken.
-TEST(StripClaims, OneStripBeyondTheNextIsLeftToItsOwner) {
+// One strip beyond an owner's next is taken too; the owner's next is not.
+TEST(StripClaims, OneStripBeyondTheNextIsTakenTheNextIsNot) {
     StripClaims c;
     c.reset(std::vector<int>{0, 3, 3});
     EXPECT_TRUE((Seen{0, true, false} == c.next(0)));  // next 1, strip 2 beyond
-    EXPECT_EQ(c.next(1).strip, -1);
-    EXPECT_TRUE((Seen{1, false, false} == c.next(0)));
-    EXPECT_TRUE((Seen{2, false, true} == c.next(0)));
-    EXPECT_EQ(c.steals(), 0);
+    EXPECT_TRUE((Seen{2, true, true} == c.next(1)));
+    EXPECT_TRUE((Seen{1, false, true} == c.next(0)));  // its share now ends at 1
+    EXPECT_EQ(c.next(1).strip, -1);  // 1 was thread 0's next: nothing beyond it
+    EXPECT_EQ(c.next(0).strip, -1);
+    EXPECT_EQ(c.steals(), 1);
 }
 
 // Threads claiming at once: every strip is claimed exactly once; each thread's claims

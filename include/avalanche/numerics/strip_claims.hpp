@@ -4,9 +4,9 @@
 // Each thread starts on its own share, consecutive strips [first, end), and claims
 // them one after the other. A thread whose share is done takes the upper half of what
 // is left of the thread with the most left, as its new share: on a machine whose cores
-// run at different speeds (a VM's cores shared with other guests; case (a) ran 10-20 %
-// longer on one of two threads than on the other, docs/performance.md) the faster core
-// no longer waits for the slower one at the end of every advection.
+// run at different speeds (a VM's cores shared with other guests: one of case (a)'s two
+// threads spent 1-39 % longer on its strips than the other, docs/performance.md) the
+// faster core no longer waits for the slower one at the end of every advection.
 //
 // A share's strips form segments (advection.cpp): the first strip of a segment computes
 // its stage rows afresh, and the first and last strips of a segment keep their updated
