@@ -142,7 +142,7 @@ Dem load_dem(const std::vector<std::string>& paths, const DemOptions& opts) {
         if (std::isfinite(v))
             dem.z_min = std::min(dem.z_min, v), dem.z_max = std::max(dem.z_max, v);
 
-    detail::VoidFillResult voids = detail::fill_voids(dem.geo, dem.z);
+    detail::VoidFillResult voids = detail::fill_voids(dem.geo, dem.z, opts.threads);
     dem.filled_holes = voids.holes;
     dem.filled_outside = voids.outside;
     dem.filled_voids = voids.holes + voids.outside;

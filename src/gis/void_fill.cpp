@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <thread>
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/gis/dem.hpp"
@@ -96,16 +97,73 @@ void extend_from_neighbours(const Grid& g, std::vector<double>& z) {
     }
 }
 
+// GDALFillNodata's inverse-distance interpolation of the void cells (NaN in z) within
+// max_distance cells of data, in bands of rows, one thread each. The interpolation of a
+// cell reads valid cells at most max_distance rows away (its column trackers forget a
+// value that many rows on) and max_distance columns away (its quadrant search steps no
+// farther), so a band run with that many rows of context on either side gives its own
+// rows the values a run over the whole grid gives them, to the bit. The bands are cut in
+// GDAL's orientation (north up), in which the interpolation runs, and are at least as
+// tall as the context. Cells it does not reach stay NaN. Returns the grid's values in
+// the solver's orientation, interpolated cells filled.
+std::vector<double> interpolate_near_data(const Grid& g, const std::vector<double>& z,
+                                          double max_distance, int threads) {
+    const int context = static_cast<int>(std::ceil(max_distance)) + 1;
+    const int bands = std::clamp(std::min(threads, g.ny / context), 1, g.ny);
+    std::vector<double> filled(z.size());
+    std::vector<int> failed(static_cast<std::size_t>(bands), 0);
+    const auto fill_band = [&](int b) {
+        // GDAL rows [r0, r1) are the band's, [c0, c1) the band with its context.
+        const int r0 = g.ny * b / bands, r1 = g.ny * (b + 1) / bands;
+        const int c0 = std::max(0, r0 - context), c1 = std::min(g.ny, r1 + context);
+        const int rows = c1 - c0;
+        const std::size_t n = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(rows);
+        std::vector<double> values(n);
+        std::vector<std::uint8_t> valid(n);
+        for (int r = c0; r < c1; ++r) {
+            const double* from = z.data() + static_cast<std::size_t>(flipped_row(r, g.ny)) * g.nx;
+            const std::size_t at = static_cast<std::size_t>(r - c0) * g.nx;
+            std::copy_n(from, g.nx, values.begin() + static_cast<std::ptrdiff_t>(at));
+            for (int i = 0; i < g.nx; ++i) valid[at + i] = std::isfinite(from[i]) ? 1 : 0;  // 0 = to fill
+        }
+        DatasetPtr v = create_mem_raster(g.nx, rows, 1, GDT_Float64);
+        DatasetPtr m = create_mem_raster(g.nx, rows, 1, GDT_Byte);
+        GDALRasterBand* vb = v->GetRasterBand(1);
+        GDALRasterBand* mb = m->GetRasterBand(1);
+        // Its working rasters (distance and value of the nearest data above each cell)
+        // in memory, not GDAL's default of temporary GeoTIFFs on disk.
+        CPLStringList options;
+        options.SetNameValue("TEMP_FILE_DRIVER", "MEM");
+        if (vb->RasterIO(GF_Write, 0, 0, g.nx, rows, values.data(), g.nx, rows, GDT_Float64, 0, 0,
+                         nullptr) != CE_None ||
+            mb->RasterIO(GF_Write, 0, 0, g.nx, rows, valid.data(), g.nx, rows, GDT_Byte, 0, 0,
+                         nullptr) != CE_None ||
+            GDALFillNodata(GDALRasterBand::ToHandle(vb), GDALRasterBand::ToHandle(mb), max_distance, 0,
+                           0, options.List(), nullptr, nullptr) != CE_None ||
+            vb->RasterIO(GF_Read, 0, r0 - c0, g.nx, r1 - r0, values.data(), g.nx, r1 - r0, GDT_Float64,
+                         0, 0, nullptr) != CE_None) {
+            failed[static_cast<std::size_t>(b)] = 1;
+            return;
+        }
+        for (int r = r0; r < r1; ++r)
+            std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(r - r0) * g.nx, g.nx,
+                        filled.begin() + static_cast<std::ptrdiff_t>(flipped_row(r, g.ny)) * g.nx);
+    };
+    std::vector<std::thread> team;
+    for (int b = 1; b < bands; ++b) team.emplace_back(fill_band, b);
+    fill_band(0);
+    for (std::thread& t : team) t.join();
+    if (std::any_of(failed.begin(), failed.end(), [](int f) { return f != 0; }))
+        throw Error(ExitCode::internal, "GDALFillNodata failed on the DEM voids");
+    return filled;
+}
+
 }  // namespace
 
-VoidFillResult fill_voids(const GeoGrid& geo, std::vector<double>& z) {
+VoidFillResult fill_voids(const GeoGrid& geo, std::vector<double>& z, int threads) {
     VoidFillResult result;
     std::vector<bool> is_void(z.size());
-    std::vector<double> validity(z.size());
-    for (std::size_t k = 0; k < z.size(); ++k) {
-        is_void[k] = !std::isfinite(z[k]);
-        validity[k] = is_void[k] ? 0.0 : 1.0;
-    }
+    for (std::size_t k = 0; k < z.size(); ++k) is_void[k] = !std::isfinite(z[k]);
     result.origin = classify(geo.grid, is_void);
     for (std::uint8_t o : result.origin) {
         if (o == static_cast<std::uint8_t>(CellOrigin::filled_hole)) ++result.holes;
@@ -113,24 +171,14 @@ VoidFillResult fill_voids(const GeoGrid& geo, std::vector<double>& z) {
     }
     if (result.holes + result.outside == 0) return result;
 
-    // Voids stay NaN so that a cell the interpolation did not reach is detected below.
-    DatasetPtr values = mem_from_solver_rows(geo, z, GDT_Float64);
-    DatasetPtr mask = mem_from_solver_rows(geo, validity, GDT_Byte);  // 0 = to fill
     // GDALFillNodata's cost grows with the search distance (40 s for 3.6 M cells with
     // 1.4 M voids when it spans the grid), so it interpolates near the data only; the
     // far voids, outside the footprint where no interpolation is meaningful, are then
-    // extended layer by layer (extend_from_neighbours).
+    // extended layer by layer (extend_from_neighbours). Voids stay NaN so that a cell the
+    // interpolation did not reach is detected below.
     const double max_distance =
         std::min(kInterpolationReachCells, static_cast<double>(geo.grid.nx + geo.grid.ny));
-    // Its working rasters (distance and value of the nearest data above each cell, the
-    // grid's size) in memory, not GDAL's default of temporary GeoTIFFs on disk.
-    CPLStringList options;
-    options.SetNameValue("TEMP_FILE_DRIVER", "MEM");
-    if (GDALFillNodata(GDALRasterBand::ToHandle(values->GetRasterBand(1)),
-                       GDALRasterBand::ToHandle(mask->GetRasterBand(1)), max_distance, 0, 0,
-                       options.List(), nullptr, nullptr) != CE_None)
-        throw Error(ExitCode::internal, "GDALFillNodata failed on the DEM voids");
-    std::vector<double> filled = read_solver_rows(*values, 1, geo.grid, "DEM void filling");
+    const std::vector<double> filled = interpolate_near_data(geo.grid, z, max_distance, threads);
     for (std::size_t k = 0; k < z.size(); ++k)
         if (is_void[k]) z[k] = filled[k];
     extend_from_neighbours(geo.grid, z);

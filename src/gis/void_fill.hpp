@@ -17,7 +17,8 @@ struct VoidFillResult {
 // Within 64 cells of data: GDALFillNodata's inverse-distance interpolation from the
 // nearest valid cells in four quadrants. Farther (large areas outside the footprint):
 // the mean of the already-filled neighbours, ring by ring, which levels off. z must
-// hold at least one finite value.
-VoidFillResult fill_voids(const GeoGrid& geo, std::vector<double>& z);
+// hold at least one finite value. The interpolation runs in bands of rows on up to
+// `threads` threads; the values do not depend on their number.
+VoidFillResult fill_voids(const GeoGrid& geo, std::vector<double>& z, int threads = 1);
 
 }  // namespace avalanche::gis::detail

@@ -146,6 +146,46 @@ TEST(LoadDem, WarpedCellsAreTheSameOnAnyNumberOfThreads) {
     EXPECT_EQ(one.filled_mask, three.filled_mask);
 }
 
+// The void fill interpolates in bands of rows on the run's threads (void_fill.cpp): a
+// band with 65 rows of context on either side gives its rows the whole grid's values.
+// Holes of every size scattered over a projected DEM (so that the grid is its cells:
+// nothing is resampled) and a wedge of voids at its border, on 1, 2 and 5 threads (5
+// bands of 84 rows, whose edges cross holes and the wedge), to the bit. (With 40 rows of
+// context the bands differ here; with 63, one less than the reach, in the test above.)
+TEST(LoadDem, VoidsAreFilledTheSameOnAnyNumberOfThreads) {
+    TempDir tmp;
+    constexpr int kW = 300, kH = 420;
+    const auto hole = [](int c, int r) {
+        if (c + r < 60) return true;                                   // the wedge at a corner
+        // A hole wider than twice the interpolation's reach (64 cells) across the bands'
+        // edges at rows 168 and 210: its inner cells take values from data up to that
+        // far away, its middle is beyond it (extended from the filled cells).
+        if (c >= 100 && c < 240 && r >= 110 && r < 250) return true;
+        const int bc = c / 37, br = r / 29;                            // blocks of cells
+        const unsigned hash = static_cast<unsigned>(bc * 7919 + br * 104729) % 11u;
+        if (hash == 0) return (c % 37) < 20 && (r % 29) < 25;          // large holes
+        return (static_cast<unsigned>(c * 31 + r * 17) % 97u) == 0;  // single cells
+    };
+    testing::write_raw_geotiff(tmp.file("holes.tif"), kW, kH, {600000, 10, 0, 5200000 + 10 * kH, 0, -10},
+                               "EPSG:32632", [&](int c, int r) {
+                                   return hole(c, r) ? std::numeric_limits<double>::quiet_NaN()
+                                                     : 1000.0 + 2.0 * c - 3.0 * r + 5.0 * std::sin(0.05 * c * r);
+                               });
+    DemOptions opts;
+    const Dem one = load_dem({tmp.file("holes.tif")}, opts);
+    ASSERT_EQ(one.z.size(), static_cast<std::size_t>(kW) * kH);
+    EXPECT_GT(one.filled_holes, 2000);
+    EXPECT_GT(one.filled_outside, 1000);
+    EXPECT_TRUE(all_finite(one.z));
+    for (int threads : {2, 5}) {
+        opts.threads = threads;
+        const Dem many = load_dem({tmp.file("holes.tif")}, opts);
+        ASSERT_EQ(one.z.size(), many.z.size());
+        EXPECT_EQ(std::memcmp(one.z.data(), many.z.data(), one.z.size() * sizeof(double)), 0) << threads;
+        EXPECT_EQ(one.filled_mask, many.filled_mask) << threads;
+    }
+}
+
 TEST(LoadDem, DemWithoutCrsNeedsTheCrsOption) {
     TempDir tmp;
     testing::write_raw_geotiff(tmp.file("nocrs.tif"), 6, 5, {600000, 10, 0, 5200050, 0, -10}, "",

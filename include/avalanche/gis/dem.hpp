@@ -33,8 +33,8 @@ struct DemOptions {
     double max_solver_bytes = 8.0 * 1024.0 * 1024.0 * 1024.0;
     double solver_bytes_per_cell = 200.0;  // estimate of the solver state per cell
     std::string memory_limit_source = "the default limit";  // named in the refusal
-    // Threads of GDAL's warp kernel (the run's OpenMP threads from the command line);
-    // the warped cells are the same for any count.
+    // Threads of GDAL's warp kernel and of the void fill's interpolation (the run's
+    // OpenMP threads from the command line); the cells are the same for any count.
     int threads = 1;
 };
 
