@@ -11,6 +11,7 @@
 #include <map>
 #include <string>
 
+#include "avalanche/app/malloc_huge_pages.hpp"
 #include "avalanche/app/openmp_wait.hpp"
 #include "avalanche/core/error.hpp"
 #include "avalanche/io/effective_config.hpp"
@@ -37,16 +38,30 @@ std::string join_command_line(int argc, char** argv) {
 }
 
 // How the OpenMP threads wait between parallel regions (openmp_wait.hpp says why),
-// unless the user chose: libgomp reads it when it loads, so it is set by re-executing
-// once.
-void choose_openmp_wait_for_run(char** argv) {
-    if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
-    std::ifstream file("/proc/loadavg");
-    std::string loadavg;
-    std::getline(file, loadavg);
-    const OpenmpWait wait = choose_openmp_wait(loadavg);
-    ::setenv(wait.variable.c_str(), wait.value.c_str(), 1);
-    ::execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
+// unless the user chose, and huge pages for malloc's large buffers
+// (malloc_huge_pages.hpp): libgomp and glibc read them as the program starts, so they
+// are set by re-executing once.
+void choose_environment_for_run(char** argv) {
+    bool changed = false;
+    if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr) {
+        std::ifstream file("/proc/loadavg");
+        std::string loadavg;
+        std::getline(file, loadavg);
+        const OpenmpWait wait = choose_openmp_wait(loadavg);
+        ::setenv(wait.variable.c_str(), wait.value.c_str(), 1);
+        changed = true;
+    }
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    const char* asked = std::getenv("AVALANCHE_HUGE_PAGES");
+    std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string thp_enabled;
+    std::getline(thp, thp_enabled);
+    if (wants_malloc_huge_pages(thp_enabled, tunables ? tunables : "", asked ? asked : "")) {
+        ::setenv("GLIBC_TUNABLES", tunables_with_huge_pages(tunables ? tunables : "").c_str(), 1);
+        ::setenv("AVALANCHE_HUGE_PAGES", "1", 1);
+        changed = true;
+    }
+    if (changed) ::execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
 }
 
 // Parse, dispatch, catch: the error boundary itself, without the re-exec above.
@@ -102,7 +117,7 @@ int dispatch(int argc, char** argv) {
 }  // namespace
 
 int run_cli(int argc, char** argv) {
-    choose_openmp_wait_for_run(argv);
+    choose_environment_for_run(argv);
     return dispatch(argc, argv);
 }
 

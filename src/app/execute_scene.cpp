@@ -13,6 +13,7 @@
 #include <omp.h>
 #endif
 
+#include "avalanche/app/malloc_huge_pages.hpp"
 #include "avalanche/app/openmp_wait.hpp"
 #include "avalanche/app/phase_times.hpp"
 #include "avalanche/app/prepared_scene.hpp"
@@ -279,6 +280,7 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
     phases.lap("report");
     js["performance"]["phases_s"] = phases.to_json();
     js["performance"]["openmp_wait"] = openmp_wait_in_effect();
+    js["performance"]["malloc_huge_pages"] = malloc_huge_pages_in_effect();
     spdlog::info("wall time: {}", phases.describe());
     const std::string summary_path = (dir / "summary.json").string();
     write_file_atomically(summary_path, js.dump(2) + "\n");
