@@ -637,9 +637,11 @@ void Stepper::advect(State& s, double tau) {
 #pragma omp single
         {
             std::vector<int> first(static_cast<std::size_t>(n) + 1);
-            for (int q = 0; q <= n; ++q)
-                first[static_cast<std::size_t>(q)] = all_strips_to_first_thread_ ? (q == 0 ? 0 : nstrips)
-                                                                                 : share_start(cells_before, q, n);
+            for (int q = 0; q <= n; ++q) {
+                const int all_first = q == 0 ? 0 : nstrips;  // set_all_strips_to_first_thread
+                first[static_cast<std::size_t>(q)] =
+                    all_strips_to_first_thread_ ? all_first : share_start(cells_before, q, n);
+            }
             claims.reset(first);
         }
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
@@ -657,10 +659,10 @@ void Stepper::advect(State& s, double tau) {
                 w.block_j0 = st.j0;
             }
             // The segment's end as far as this strip's regime rows need it
-            // (keep_regime_row): a strip that does not end its segment is followed by
-            // the same thread's next strip (StripClaims), and the rows it computes lie
-            // at most kRegimeHeldRows short of that strip's end only where that strip is
-            // the box's last, shorter one, which ends the segment.
+            // (keep_regime_row). A strip that does not end its segment is followed by the
+            // same thread's next strip (StripClaims); the regime rows it computes (two
+            // past its end at most) come within kRegimeHeldRows of that strip's end only
+            // if that strip is the box's last, shorter one, which ends the segment.
             w.block_j1 = ends ? st.j1 : strips[static_cast<std::size_t>(k + 1)].j1;
             StripBuffers::WaitingRows* wait = nullptr;
             if ((starts && k > 0) || (ends && k + 1 < nstrips)) {

@@ -168,8 +168,8 @@ TEST(LoadDem, VoidsAreFilledTheSameOnAnyNumberOfThreads) {
     };
     testing::write_raw_geotiff(tmp.file("holes.tif"), kW, kH, {600000, 10, 0, 5200000 + 10 * kH, 0, -10},
                                "EPSG:32632", [&](int c, int r) {
-                                   return hole(c, r) ? std::numeric_limits<double>::quiet_NaN()
-                                                     : 1000.0 + 2.0 * c - 3.0 * r + 5.0 * std::sin(0.05 * c * r);
+                                   const double z = 1000.0 + 2.0 * c - 3.0 * r + 5.0 * std::sin(0.05 * c * r);
+                                   return hole(c, r) ? std::numeric_limits<double>::quiet_NaN() : z;
                                });
     DemOptions opts;
     const Dem one = load_dem({tmp.file("holes.tif")}, opts);

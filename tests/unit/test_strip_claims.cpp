@@ -110,7 +110,8 @@ TEST(StripClaims, ConcurrentClaimsCoverEveryStripOnceInRuns) {
             }
             EXPECT_FALSE(open) << "round " << round;  // every run ended
         }
-        EXPECT_TRUE(std::all_of(count.begin(), count.end(), [](int n) { return n == 1; })) << "round " << round;
+        EXPECT_TRUE(std::all_of(count.begin(), count.end(), [](int n) { return n == 1; }))
+            << "round " << round;
     }
     // The runs checked include taken shares (every strip starts as thread 0's in half
     // the rounds, and it claims them slowly).
