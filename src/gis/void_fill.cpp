@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <exception>
 #include <thread>
 
 #include "avalanche/core/error.hpp"
@@ -109,9 +110,11 @@ void extend_from_neighbours(const Grid& g, std::vector<double>& z) {
 std::vector<double> interpolate_near_data(const Grid& g, const std::vector<double>& z,
                                           double max_distance, int threads) {
     const int context = static_cast<int>(std::ceil(max_distance)) + 1;
-    const int bands = std::clamp(std::min(threads, g.ny / context), 1, g.ny);
+    const int bands = std::max(1, std::min(threads, g.ny / context));
     std::vector<double> filled(z.size());
-    std::vector<int> failed(static_cast<std::size_t>(bands), 0);
+    // A band's failure (GDAL's, or memory) is rethrown here, not in its thread, where an
+    // escaping exception would end the program.
+    std::vector<std::exception_ptr> failure(static_cast<std::size_t>(bands));
     const auto fill_band = [&](int b) {
         // GDAL rows [r0, r1) are the band's, [c0, c1) the band with its context.
         const int r0 = g.ny * b / bands, r1 = g.ny * (b + 1) / bands;
@@ -141,20 +144,25 @@ std::vector<double> interpolate_near_data(const Grid& g, const std::vector<doubl
             GDALFillNodata(GDALRasterBand::ToHandle(vb), GDALRasterBand::ToHandle(mb), max_distance, 0,
                            0, options.List(), nullptr, nullptr) != CE_None ||
             vb->RasterIO(GF_Read, 0, r0 - c0, g.nx, r1 - r0, values.data(), g.nx, r1 - r0, GDT_Float64,
-                         0, 0, nullptr) != CE_None) {
-            failed[static_cast<std::size_t>(b)] = 1;
-            return;
-        }
+                         0, 0, nullptr) != CE_None)
+            throw Error(ExitCode::internal, "GDALFillNodata failed on the DEM voids");
         for (int r = r0; r < r1; ++r)
             std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(r - r0) * g.nx, g.nx,
                         filled.begin() + static_cast<std::ptrdiff_t>(flipped_row(r, g.ny)) * g.nx);
     };
+    const auto run_band = [&](int b) {
+        try {
+            fill_band(b);
+        } catch (...) {
+            failure[static_cast<std::size_t>(b)] = std::current_exception();
+        }
+    };
     std::vector<std::thread> team;
-    for (int b = 1; b < bands; ++b) team.emplace_back(fill_band, b);
-    fill_band(0);
+    for (int b = 1; b < bands; ++b) team.emplace_back(run_band, b);
+    run_band(0);
     for (std::thread& t : team) t.join();
-    if (std::any_of(failed.begin(), failed.end(), [](int f) { return f != 0; }))
-        throw Error(ExitCode::internal, "GDALFillNodata failed on the DEM voids");
+    for (const std::exception_ptr& e : failure)
+        if (e) std::rethrow_exception(e);
     return filled;
 }
 

@@ -8,8 +8,8 @@
 // DEM, the void fill's rasters, the release, the products' maps and GDAL's copies of
 // them), each written once, and on a kernel whose transparent huge pages are given
 // only where a program asks ("madvise", Debian's default) every 4 KiB of them costs a
-// page fault; in a VM that is a third of such a run (an ASTER-size tile: 7.6-8.7 s,
-// 4.9-5.5 s with the tunable; docs/performance.md). glibc (2.35 and later) asks for
+// page fault; in a VM that is a third of such a run (an ASTER-size tile: 6.95-7.63 s,
+// 4.53-4.73 s with the tunable; docs/performance.md, "Huge pages for malloc's buffers"). glibc (2.35 and later) asks for
 // them itself with the tunable glibc.malloc.hugetlb=1, which it reads only as the
 // program starts: the CLI sets it in the re-execution it makes for the OpenMP wait
 // (cli.cpp). The solver's own grid fields choose their pages themselves
