@@ -49,6 +49,31 @@ void* allocate_field_bytes(std::size_t bytes) {
     return p;
 }
 
+void* allocate_page_bytes(std::size_t bytes) {
+#if defined(__linux__)
+    const std::size_t size = mapped_bytes(bytes == 0 ? 1 : bytes);
+    void* p = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+#if defined(MADV_NOHUGEPAGE)
+    // Small pages also where THP is "always": a huge page would make the kernel zero
+    // 2 MiB for the few columns written in it.
+    if (size >= kHugePageBytes) (void)madvise(p, size, MADV_NOHUGEPAGE);
+#endif
+    return p;
+#else
+    return allocate_field_bytes(bytes);
+#endif
+}
+
+void free_page_bytes(void* p, std::size_t bytes) noexcept {
+    if (p == nullptr) return;
+#if defined(__linux__)
+    munmap(p, mapped_bytes(bytes == 0 ? 1 : bytes));
+#else
+    free_field_bytes(p, bytes);
+#endif
+}
+
 void advise_written_whole(void* p, std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     // Only whole 2 MiB pages: the tail stays in small pages, so a field never holds more

@@ -52,11 +52,13 @@ double RunStatistics::cell_updates_per_second() const {
     return wall_seconds > 0.0 ? static_cast<double>(cell_updates) / wall_seconds : 0.0;
 }
 
-double total_volume(const State& s, const Grid& g) {
+double total_volume(const State& s, const Grid& g) { return total_volume(s, g, ActiveBox{0, g.nx, 0, g.ny}); }
+
+double total_volume(const State& s, const Grid& g, const ActiveBox& holding) {
     long double sum = 0.0L;
-    for (int j = 0; j < g.ny; ++j) {
+    for (int j = holding.j0; j < holding.j1; ++j) {
         const double* h = s.h.row(j);
-        for (int i = 0; i < g.nx; ++i) sum += h[i];
+        for (int i = holding.i0; i < holding.i1; ++i) sum += h[i];
     }
     return static_cast<double>(sum * g.cell_area());
 }
@@ -229,7 +231,7 @@ RunStatistics Simulation::run() {
     LoopState L = loop_;
     if (!resumed_) {
         L = LoopState{};
-        L.released_volume = total_volume(state_, grid_);
+        L.released_volume = total_volume(state_, grid_, stepper_.active_box());
         L.next_output = numerics_.output_interval;
         L.next_checkpoint = checkpoint_interval_;
     }
@@ -369,7 +371,7 @@ RunStatistics Simulation::run() {
     st.cell_updates = cell_updates_before + stepper_.cell_updates();
     st.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     st.released_volume = L.released_volume;
-    st.final_volume = total_volume(state_, grid_);
+    st.final_volume = total_volume(state_, grid_, stepper_.active_box());
     st.outflow_volume = stepper_.outflow_volume();
     st.max_kinetic_energy = L.ke_max;
     // Scanned again rather than kept from the loop: a run that took no step (resumed at

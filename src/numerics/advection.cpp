@@ -38,12 +38,11 @@ namespace avalanche {
 void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity) {
     stride = row_stride;
     rows = row_capacity;
+    // Fresh arrays of untouched zeros (PageVector): a stage's first write of a column
+    // makes its pages. The bounds' "no bound" is written by cover_columns.
     const std::size_t n = static_cast<std::size_t>(stride) * static_cast<std::size_t>(rows);
-    for (auto* a : strip_arrays()) a->assign(n, 0.0);
-    u_lo.assign(n, kNoVelocityBound);
-    v_lo.assign(n, kNoVelocityBound);
-    u_hi.assign(n, -kNoVelocityBound);
-    v_hi.assign(n, -kNoVelocityBound);
+    for (auto* a : strip_arrays()) *a = PageVector<double>(n);
+    bounds_c0 = bounds_c1 = 0;
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);
     regime_row.assign(static_cast<std::size_t>(stride), kRegimeAtStart);
@@ -54,11 +53,31 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity
     held_cols.reserve(2 * kRegimeHeldRows);
 }
 
-std::vector<std::vector<double>*> Stepper::StripBuffers::strip_arrays() {
+std::vector<PageVector<double>*> Stepper::StripBuffers::strip_arrays() {
     return {&su,     &sv,     &cx,     &cy,     &ax,     &ay,    &u_lo,  &u_hi,  &v_lo,
             &v_hi,   &speed_hi, &yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &pred_u,
             &pred_v, &pred_a, &fx_h,  &fx_hu,  &fx_hv,  &fy_h,   &fy_hu,   &fy_hv,   &factor,
             &out_h,  &out_hu, &out_hv};
+}
+
+void Stepper::StripBuffers::cover_columns(int c0, int c1) {
+    c0 = std::max(c0, 0);
+    c1 = std::min(c1, static_cast<int>(stride));
+    if (c0 >= c1) return;
+    if (bounds_c0 == bounds_c1) bounds_c0 = bounds_c1 = c0;  // nothing covered yet
+    const auto fill = [&](int from, int to) {
+        for (int q = 0; q < rows; ++q) {
+            const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(q) * stride;
+            std::fill(u_lo.data() + row + from, u_lo.data() + row + to, kNoVelocityBound);
+            std::fill(v_lo.data() + row + from, v_lo.data() + row + to, kNoVelocityBound);
+            std::fill(u_hi.data() + row + from, u_hi.data() + row + to, -kNoVelocityBound);
+            std::fill(v_hi.data() + row + from, v_hi.data() + row + to, -kNoVelocityBound);
+        }
+    };
+    if (c0 < bounds_c0) fill(c0, bounds_c0);
+    if (c1 > bounds_c1) fill(bounds_c1, c1);
+    bounds_c0 = std::min(bounds_c0, c0);
+    bounds_c1 = std::max(bounds_c1, c1);
 }
 
 void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
@@ -67,7 +86,7 @@ void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
     // faces of row J), the neighbours of the rows it computes (velocities and
     // pressure coefficients) and the x-predictor rows under its first y-faces.
     struct Carried {
-        std::vector<double>* a;
+        PageVector<double>* a;
         int first, count;
     };
     const Carried first_order[] = {
@@ -203,7 +222,7 @@ void Stepper::hold_rest_faces(const State& s, const StripBuffers& w, const HeldF
     const auto pair = [&](const Field2D& f) {
         return std::pair{f.raw().data() + gl, f.raw().data() + gr};
     };
-    const std::vector<double>& c = x_faces ? w.cx : w.cy;
+    const PageVector<double>& c = x_faces ? w.cx : w.cy;
     RestFaceRowInput in{s.h.raw().data() + gl, s.h.raw().data() + gr, held + gl, held + gr,
                         c.data() + kl, c.data() + kr, nullptr, nullptr, nullptr, nullptr,
                         nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
@@ -284,21 +303,20 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     const auto full = [&](int i, int r) { return s.h.index(i, r); };
     // c: the pressure coefficients, a: the celerities (both from buffer index kc).
     const auto face_in = [&](const double* h, const double* qn, const double* qt, std::ptrdiff_t kq,
-                             const std::vector<double>& c, const std::vector<double>& a,
+                             const PageVector<double>& c, const PageVector<double>& a,
                              std::ptrdiff_t kc, std::ptrdiff_t off) {
         FaceRowInput in{h + kq, qn + kq, qt + kq, c.data() + kc, off};
         in.a = a.data() + kc;
         return in;
     };
     // The same with the state's velocity quotients (normal un, tangential ut) from buffer index kv.
-    const auto with_velocities = [](FaceRowInput in, const std::vector<double>& un,
-                                    const std::vector<double>& ut, std::ptrdiff_t kv) {
+    const auto with_velocities = [](FaceRowInput in, const PageVector<double>& un,
+                                    const PageVector<double>& ut, std::ptrdiff_t kv) {
         in.un = un.data() + kv;
         in.ut = ut.data() + kv;
         return in;
     };
-    const auto face_out = [](std::vector<double>& a, std::vector<double>& b2,
-                             std::vector<double>& c, std::ptrdiff_t k) {
+    const auto face_out = [](auto& a, auto& b2, auto& c, std::ptrdiff_t k) {  // strip or row arrays
         return FaceRowOutput{a.data() + k, b2.data() + k, c.data() + k};
     };
     const double dt_dx = tau / grid_.dx, dt_dy = tau / grid_.dy;
@@ -631,6 +649,7 @@ void Stepper::advect(State& s, double tau) {
     // wait in the thread's buffers until every segment is done. The other strips write
     // theirs into s at once (advect_strip, step 7), so no second state is kept.
     StripClaims claims;
+    const ActiveBox per_cell = per_cell_box(b);
 #pragma omp parallel if (threaded_)
     {
         const int n = omp_get_num_threads(), t = omp_get_thread_num();
@@ -645,6 +664,9 @@ void Stepper::advect(State& s, double tau) {
             claims.reset(first);
         }
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
+        // The columns the stages read of the bounds: the per-cell stage's, with a
+        // margin (buffer positions: column -ng at 0).
+        w.cover_columns(per_cell.i0 - 2 + kGhostLayers, per_cell.i1 + 2 + kGhostLayers);
         w.waiting_used = 0;
         w.held_rows.clear();
         w.held_cols.clear();
@@ -709,7 +731,7 @@ void Stepper::advect(State& s, double tau) {
     // The whole box would have given every empty cell of its per-cell stage the regime
     // at start (regime_row); the bands computed those of their own rows and columns.
     if (regimes && bands_.size() > 1) {
-        const ActiveBox pc = per_cell_box(b);
+        const ActiveBox& pc = per_cell;
         const RegimeFlags at_start = stored_regime(kRegimeAtStart);
         std::size_t q = 0;  // the band that stores row r's regimes (keep_regime_row)
         for (int r = pc.j0; r < pc.j1; ++r) {

@@ -22,6 +22,7 @@
 #include "avalanche/numerics/stepper.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "support/analytic_harness.hpp"
+#include "support/resident_memory.hpp"
 
 using namespace avalanche;
 
@@ -190,5 +191,30 @@ TEST(AdvectionStrips, RegimesAreThoseOfTheStateBeforeEachAdvection) {
         }
         // Cells of both regimes: the comparison saw regimes change.
         EXPECT_GT(passive, 1000) << threads << " threads";
+    }
+}
+
+// The strips' buffers have the grid's row stride, and a stage writes only the columns of
+// the box (PageVector): a small flow on a wide grid makes only those pages. Written
+// whole, the 30 arrays of 24 rows of this 8004-cell stride would make 46 MB.
+TEST(AdvectionStrips, ASmallFlowOnAWideGridMakesOnlyItsColumnsOfTheBuffers) {
+    if (test::resident_bytes() < 0) GTEST_SKIP() << "no /proc/self/statm";
+    const analytic::ScopedThreads scoped(1);
+    const Grid g = analytic::box_grid(0.0, 8000.0, 0.0, 100.0, 1.0);
+    const TerrainFields t = analytic::plane_terrain(g, 10.0, 9.81);
+    State s = analytic::make_state(g, [](double xa, double xb, double ya, double yb) {
+        const double x = 0.5 * (xa + xb), y = 0.5 * (ya + yb);
+        return std::abs(x - 4000.0) < 5.0 && std::abs(y - 50.0) < 5.0 ? 1.0 : 0.0;
+    });
+    for (const Scheme scheme : {Scheme::waf, Scheme::godunov}) {
+        NumericsParams n;
+        n.scheme = scheme;
+        Stepper stepper(g, t, MaterialParams{}, n, 1e-4);
+        stepper.reset_active_box(s);
+        const long long before = test::resident_bytes();
+        for (int step = 0; step < 3; ++step) stepper.step(s, 0.5 * stepper.stable_dt(s));
+        const long long grown = test::resident_bytes() - before;
+        EXPECT_LT(grown, 12ll << 20) << "the strips' buffers were written beyond the box's columns";
+        EXPECT_LT(stepper.active_box().i1 - stepper.active_box().i0, 100);
     }
 }

@@ -133,3 +133,27 @@ TEST(FieldStorage, OnlyFieldsWrittenWholeTakeHugePages) {
     EXPECT_EQ(assigned.nx(), 4000);
     EXPECT_EQ(assigned(10, 200), 1.0);
 }
+
+// Arrays written only in part (the advection's strip buffers: grid-wide rows of which a
+// small flow writes a few columns) hold only the pages written, also below the size
+// from which fields get mappings of their own (which the heap would hand out zeroed by
+// writing them).
+TEST(FieldStorage, PageVectorsAreZeroAndHoldOnlyThePagesWritten) {
+    const long long before = test::resident_bytes();
+    if (before < 0) GTEST_SKIP() << "no /proc/self/statm";
+    constexpr std::size_t kRow = 4004, kRows = 24;  // 751 kB an array: the heap's size
+    static_assert(kRow * kRows * sizeof(double) < kHugePageMinBytes);
+    std::vector<PageVector<double>> arrays;
+    for (int k = 0; k < 30; ++k) arrays.emplace_back(kRow * kRows);  // 22.5 MB in all
+    for (PageVector<double>& a : arrays) {
+        EXPECT_EQ(address(a.data()) % 4096, 0u);
+        for (std::size_t r = 0; r < kRows; ++r) a[r * kRow + 2000] = 1.0;  // a page a row
+    }
+    const long long grown = test::resident_bytes() - before;
+    EXPECT_LT(grown, 8ll << 20) << "arrays written in part were written whole";
+    EXPECT_EQ(arrays[7][5 * kRow + 2000], 1.0);
+    EXPECT_EQ(arrays[7][5 * kRow + 2001], 0.0);
+    const PageVector<double> copy = arrays[3];
+    EXPECT_EQ(copy[kRow + 2000], 1.0);
+    EXPECT_EQ(copy[kRow + 1999], 0.0);
+}

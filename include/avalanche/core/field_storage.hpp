@@ -47,18 +47,42 @@ void free_field_bytes(void* p, std::size_t bytes) noexcept;
 // than Linux, or where the kernel declines (THP off), nothing changes.
 void advise_written_whole(void* p, std::size_t bytes) noexcept;
 
-template <class T>
+// Zeroed bytes in a mapping of their own whatever their size (Linux; elsewhere as
+// allocate_field_bytes), in small pages: an array of which only some columns are
+// ever written holds only their pages. The advection's strip buffers are such arrays:
+// grid-wide rows of which a small flow on a large DEM writes the few columns of its
+// box (2 x 20 MB a run on an ASTER-size tile's 3601 columns, written whole before).
+// Free with free_page_bytes and the same size.
+void* allocate_page_bytes(std::size_t bytes);
+void free_page_bytes(void* p, std::size_t bytes) noexcept;
+
+// Where an allocator's arrays come from: allocate_field_bytes (fields) or
+// allocate_page_bytes (arrays written only in part).
+enum class ZeroBytes { field, pages };
+
+template <class T, ZeroBytes From = ZeroBytes::field>
 struct FieldAllocator {
     static_assert(std::is_trivially_default_constructible_v<T>, "zero bytes must be a value of T");
     using value_type = T;
+    template <class U>
+    struct rebind {
+        using other = FieldAllocator<U, From>;
+    };
     FieldAllocator() = default;
     template <class U>
-    FieldAllocator(const FieldAllocator<U>&) noexcept {}
+    FieldAllocator(const FieldAllocator<U, From>&) noexcept {}
     T* allocate(std::size_t n) {
         if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
-        return static_cast<T*>(allocate_field_bytes(n * sizeof(T)));
+        const std::size_t bytes = n * sizeof(T);
+        return static_cast<T*>(From == ZeroBytes::field ? allocate_field_bytes(bytes)
+                                                        : allocate_page_bytes(bytes));
     }
-    void deallocate(T* p, std::size_t n) noexcept { free_field_bytes(p, n * sizeof(T)); }
+    void deallocate(T* p, std::size_t n) noexcept {
+        if constexpr (From == ZeroBytes::field)
+            free_field_bytes(p, n * sizeof(T));
+        else
+            free_page_bytes(p, n * sizeof(T));
+    }
     // Value-initialisation leaves the allocation's zero bytes as they are (see above).
     template <class U>
     void construct(U* p) noexcept {
@@ -69,7 +93,7 @@ struct FieldAllocator {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
     template <class U>
-    bool operator==(const FieldAllocator<U>&) const noexcept {
+    bool operator==(const FieldAllocator<U, From>&) const noexcept {
         return true;
     }
 };
@@ -78,5 +102,9 @@ struct FieldAllocator {
 template <class T>
 using CellVector = std::vector<T, FieldAllocator<T>>;
 using FieldStorage = CellVector<double>;
+// A vector whose pages are made only where it is written (allocate_page_bytes); the
+// same rule as above for elements made without a value.
+template <class T>
+using PageVector = std::vector<T, FieldAllocator<T, ZeroBytes::pages>>;
 
 }  // namespace avalanche

@@ -49,6 +49,10 @@ struct RunStatistics {
 // Volume held by the state (m^3), summed in long double so that the mass balance
 // is judged on the solver's round-off, not the diagnostic's.
 double total_volume(const State& s, const Grid& g);
+// The same over the cells of `holding`, which holds every cell with material (the
+// stepper's active box does): the same sum to the bit, since the cells outside add
+// zeros, without reading them (a small flow on a large DEM: 4 M cells read twice a run).
+double total_volume(const State& s, const Grid& g, const ActiveBox& holding);
 
 // What the time loop needs from the state after each step.
 struct StepScan {

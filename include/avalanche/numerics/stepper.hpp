@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "avalanche/core/field_storage.hpp"
 #include "avalanche/core/grid.hpp"
 #include "avalanche/core/state.hpp"
 #include "avalanche/numerics/active_box.hpp"
@@ -105,24 +106,26 @@ class Stepper {
   private:
     // Scratch of one strip of rows of the advection (advection.cpp): every array has
     // the grid's row stride and holds the rows [base, base + rows) of one stage field.
+    // Their pages are made where the stages write (PageVector): only the columns of the
+    // box on a wide grid with a small flow.
     // A thread works through consecutive strips, and the rows a strip shares with the
     // next (one below its end, three above) are moved down and kept, so every stage
     // row is computed once per thread.
     struct StripBuffers {
         std::ptrdiff_t stride = 0;
         int ng = 0, base = 0, rows = 0;
-        std::vector<double> su, sv;  // the state's velocity quotients hu / h, hv / h
-        std::vector<double> cx, cy;  // k_x p_x and k_y p_y per cell
-        std::vector<double> ax, ay;  // celerities sqrt(cx h), sqrt(cy h) (0 on thin cells)
-        std::vector<double> u_lo, u_hi, v_lo, v_hi, speed_hi;  // invariant bounds (u -/+ 2a_x, ...)
-        std::vector<double> yfo_h, yfo_qn, yfo_qt;     // first-order y-faces of the y-predictor
-        std::vector<double> pred_h, pred_hu, pred_hv;  // state advanced by the x-predictor
-        std::vector<double> pred_u, pred_v;            // and its velocity quotients
-        std::vector<double> pred_a;                    // and its celerity in y, sqrt(cy h)
-        std::vector<double> fx_h, fx_hu, fx_hv;        // x-face fluxes; face (i, r) left of cell i
-        std::vector<double> fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
-        std::vector<double> factor;                    // donor factors
-        std::vector<double> out_h, out_hu, out_hv;     // the updated rows of the strip
+        PageVector<double> su, sv;  // the state's velocity quotients hu / h, hv / h
+        PageVector<double> cx, cy;  // k_x p_x and k_y p_y per cell
+        PageVector<double> ax, ay;  // celerities sqrt(cx h), sqrt(cy h) (0 on thin cells)
+        PageVector<double> u_lo, u_hi, v_lo, v_hi, speed_hi;  // invariant bounds (u -/+ 2a_x, ...)
+        PageVector<double> yfo_h, yfo_qn, yfo_qt;     // first-order y-faces of the y-predictor
+        PageVector<double> pred_h, pred_hu, pred_hv;  // state advanced by the x-predictor
+        PageVector<double> pred_u, pred_v;            // and its velocity quotients
+        PageVector<double> pred_a;                    // and its celerity in y, sqrt(cy h)
+        PageVector<double> fx_h, fx_hu, fx_hv;        // x-face fluxes; face (i, r) left of cell i
+        PageVector<double> fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
+        PageVector<double> factor;                    // donor factors
+        PageVector<double> out_h, out_hu, out_hv;     // the updated rows of the strip
         // The updated rows of a segment's first and last strips, which must wait until
         // every segment is done (advect()): rows [j0, j1), columns [i0, i1), row j0 first.
         struct WaitingRows {
@@ -169,7 +172,12 @@ class Stepper {
         int carried_for = 0;
         int vel_end = 0, p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
         void allocate(std::ptrdiff_t row_stride, int row_capacity);
-        std::vector<std::vector<double>*> strip_arrays();
+        std::vector<PageVector<double>*> strip_arrays();
+        // The invariant bounds hold "no bound" (kNoVelocityBound) until written, in the
+        // columns [bounds_c0, bounds_c1) of every row (buffer positions, column -ng at 0),
+        // which cover_columns widens to [c0, c1) before a stage reads them.
+        int bounds_c0 = 0, bounds_c1 = 0;
+        void cover_columns(int c0, int c1);
         // Moves the rows the next strip needs down by `by` rows (the strip height),
         // columns [i0, i1); the predictors' rows only for the WAF scheme.
         void carry_rows(int by, bool waf, int i0, int i1);
