@@ -127,9 +127,9 @@ struct Outcome {
 // here would add 24 bytes per cell to the peak memory the benchmark reports.
 Outcome run_once(Scene& s, long step_limit) {
     Outcome o;
-    const double v0 = total_volume(s.initial, s.grid);
+    const double v0 = total_volume(s.initial, s.grid, s.released);
     const auto t0 = Clock::now();
-    Simulation sim(s.grid, s.terrain, s.material, s.numerics, std::move(s.initial), s.h_min);
+    Simulation sim(s.grid, s.terrain, s.material, s.numerics, std::move(s.initial), s.h_min, s.released);
     o.construct = seconds_since(t0);
     StepLimit limit(step_limit > 0 ? static_cast<std::uint64_t>(step_limit) : UINT64_MAX);
     sim.add_observer(&limit);
@@ -150,7 +150,8 @@ Outcome run_once(Scene& s, long step_limit) {
         o.steps = static_cast<std::uint64_t>(step_limit);
         o.end = "step_limit";
         o.mass_error =
-            (total_volume(sim.state(), s.grid) + sim.stepper().outflow_volume() - v0) / v0;
+            (total_volume(sim.state(), s.grid, sim.stepper().active_box()) + sim.stepper().outflow_volume() - v0) /
+            v0;
     }
     o.updates = sim.stepper().cell_updates();
     o.outflow = sim.stepper().outflow_volume();

@@ -26,7 +26,7 @@ std::vector<double> sample_dem(const Grid& g, F z_of) {
 }
 
 // h_min as the tool chooses it (numerics.h_min = 0: relative to the deepest cell).
-void finish(Scene& s) { s.h_min = effective_h_min(s.numerics, s.initial, s.terrain); }
+void finish(Scene& s) { s.h_min = effective_h_min(s.numerics, s.initial, s.terrain, s.released); }
 }  // namespace
 
 std::string to_string(Scheme s) { return s == Scheme::waf ? "waf" : "godunov"; }
@@ -45,7 +45,7 @@ Scene tilted_plane(int n, double cell_size, double slope_deg, double thickness, 
     s.numerics.scheme = scheme;
     s.numerics.t_end = 1e6;  // the run is cut by a step count
     s.numerics.output_interval = 1e6;
-    s.initial = state_at_rest(s.grid, Field2D(n, n, kGhostLayers, thickness), s.terrain);
+    s.initial = state_at_rest(s.grid, Field2D(n, n, kGhostLayers, thickness), s.terrain, &s.released);
     finish(s);
     return s;
 }
@@ -65,7 +65,7 @@ Scene paper_chute(double cell_size, Scheme scheme) {
     s.numerics.t_end = 60.0;
     s.numerics.output_interval = 60.0;
     s.initial =
-        state_at_rest(s.grid, rasterize_release(CapRelease{{7.5, 20.0}, 2.5}, s.grid), s.terrain);
+        state_at_rest(s.grid, rasterize_release(CapRelease{{7.5, 20.0}, 2.5}, s.grid), s.terrain, &s.released);
     finish(s);
     return s;
 }
@@ -98,7 +98,7 @@ Scene valley(int nx, int ny, double cell_size, double x0, double y0, const Valle
     // crop and the full DEM hold the same release up to round-off.
     s.initial = state_at_rest(
         s.grid, rasterize_release(ParaboloidRelease{{r.xc, r.yc}, r.radius, r.thickness}, s.grid),
-        s.terrain);
+        s.terrain, &s.released);
     finish(s);
     return s;
 }

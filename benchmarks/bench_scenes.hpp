@@ -6,6 +6,7 @@
 
 #include "avalanche/core/grid.hpp"
 #include "avalanche/core/state.hpp"
+#include "avalanche/numerics/active_box.hpp"
 #include "avalanche/numerics/parameters.hpp"
 #include "avalanche/physics/material.hpp"
 #include "avalanche/physics/terrain.hpp"
@@ -19,6 +20,7 @@ struct Scene {
     MaterialParams material;
     NumericsParams numerics;
     State initial;
+    ActiveBox released;  // holds every cell of initial with material (state_at_rest)
     double h_min = 0.0;
 };
 

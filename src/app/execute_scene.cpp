@@ -100,22 +100,25 @@ int openmp_threads() {
 }
 
 // The cells that hold material (interior, row-major): the release outline of the report.
-std::vector<std::uint8_t> cells_with_material(const State& state, const Grid& g) {
+// Only those of `holding` can (PreparedScene::material_box).
+std::vector<std::uint8_t> cells_with_material(const State& state, const Grid& g, const ActiveBox& holding) {
     std::vector<std::uint8_t> cells(g.cells());
-    for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i)
+    for (int j = holding.j0; j < holding.j1; ++j)
+        for (int i = holding.i0; i < holding.i1; ++i)
             cells[static_cast<std::size_t>(j) * g.nx + i] = state.h(i, j) > 0.0;
     return cells;
 }
 
 // Both overloads of execute_scene: `initial` is the scene's initial state (copied or
-// moved out of it); scene.initial is not read.
+// moved out of it); scene.initial is not read. Of `initial` only the scene's
+// material_box is read (its cells outside are zero).
 RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
                    const RunOptions& options) {
     PhaseTimes phases;
     if (options.prepare_seconds >= 0.0) phases.add("prepare", options.prepare_seconds);
     const std::filesystem::path dir(options.out_dir);
-    const double h_min = effective_h_min(s.numerics, initial, scene.terrain);
+    const ActiveBox holding = scene.material_box();
+    const double h_min = effective_h_min(s.numerics, initial, scene.terrain, holding);
     const nlohmann::json config = effective_config(s);
     const std::string hash = config_hash(config);
     const std::string checkpoint_path = (dir / "checkpoint.h5").string();
@@ -146,14 +149,14 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
 
     // What the products need of the initial state, before it moves into the simulation:
     // the solver then holds the only copy (24 bytes per cell less at the peak).
-    const double released_volume = total_volume(initial, scene.grid);
-    const ReleaseTop top = release_top(scene.grid, scene.terrain, initial, s.output.h_threshold);
-    const std::vector<std::uint8_t> release_cells = cells_with_material(initial, scene.grid);
+    const double released_volume = total_volume(initial, scene.grid, holding);
+    const ReleaseTop top = release_top(scene.grid, scene.terrain, initial, s.output.h_threshold, holding);
+    const std::vector<std::uint8_t> release_cells = cells_with_material(initial, scene.grid, holding);
     // Alive for the run only: the products need the maps and the statistics, not the
     // solver's state and its advection buffer (6 doubles per cell), whose memory they
     // can reuse. (The terrain belongs to the scene and stays.)
     std::optional<Simulation> sim(std::in_place, scene.grid, scene.terrain, s.material, s.numerics,
-                                  std::move(initial), h_min);
+                                  std::move(initial), h_min, holding);
     if (!scene.outside_data.empty()) sim->set_sink_cells(scene.outside_data);
     ResultsMetadata meta{
         scene.geotransform, scene.crs_wkt, scene.frame, s.numerics.gravity, h_min, config, hash};
@@ -239,7 +242,8 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
                                                 scene.horizontal_position, scene.cell_area_m2);
     const std::vector<RunCaveat> caveats = run_caveats(
         {stats,
-         edge_contact(scene.grid, maps.max_depth(), s.output.h_threshold, scene.outside_data),
+         edge_contact(scene.grid, maps.max_depth(), s.output.h_threshold, scene.outside_data,
+                      maps.reach_box()),
          scene.frame, s.numerics, s.output.h_threshold});
     const ProductInputs products{scene,
                                  release_cells,
@@ -290,7 +294,8 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
 }  // namespace
 
 std::string scene_fingerprint_of(const PreparedScene& scene, const State& initial) {
-    return scene_fingerprint(scene.grid, scene.terrain, initial, scene.outside_data, scene.probes);
+    return scene_fingerprint(scene.grid, scene.terrain, initial, scene.material_box(), scene.outside_data,
+                             scene.probes);
 }
 
 RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const RunOptions& options) {

@@ -75,18 +75,20 @@ PreparedScene prepare_dem_scene(const Scenario& s) {
     std::vector<double> thickness = release_thickness(s, dem, p.input_notes, p.input_files);
     Field2D field(p.grid.nx, p.grid.ny, kGhostLayers, 0.0);
     field.set_interior(thickness);
-    p.initial = state_at_rest(p.grid, field, p.terrain);
-    double volume = total_volume(p.initial, p.grid);
+    p.initial_box.emplace();
+    p.initial = state_at_rest(p.grid, field, p.terrain, &*p.initial_box);
+    const ActiveBox& released = *p.initial_box;
+    double volume = total_volume(p.initial, p.grid, released);
     if (!(volume > 0.0)) throw ConfigError("release", "the release holds no material on the DEM grid");
     if (const auto* poly = std::get_if<PolygonReleaseSpec>(&s.release); poly && poly->volume) {
         const double scale = *poly->volume / volume;
-        for (int j = 0; j < p.grid.ny; ++j)
-            for (int i = 0; i < p.grid.nx; ++i) p.initial.h(i, j) *= scale;
+        for (int j = released.j0; j < released.j1; ++j)
+            for (int i = released.i0; i < released.i1; ++i) p.initial.h(i, j) *= scale;
         std::ostringstream n;
         n << "Scaled the release thickness by " << scale << " to the requested volume of " << *poly->volume
           << " m3.";
         p.input_notes.push_back(n.str());
-        volume = total_volume(p.initial, p.grid);
+        volume = total_volume(p.initial, p.grid, released);
     }
 
     // Cells filled outside the DEM's data footprint are not terrain: sinks.

@@ -116,12 +116,17 @@ StepScan scan_state(const State& s, const Grid& g, const ActiveBox& box, double 
 }
 
 double effective_h_min(const NumericsParams& n, const State& initial, const TerrainFields& terrain) {
+    return effective_h_min(n, initial, terrain, ActiveBox{0, initial.h.nx(), 0, initial.h.ny()});
+}
+
+double effective_h_min(const NumericsParams& n, const State& initial, const TerrainFields& terrain,
+                       const ActiveBox& holding) {
     if (n.h_min > 0.0) return n.h_min;
     double deepest = 0.0;
     // The terrain of released cells only: elsewhere h = 0, and reading a terrain made on
     // demand (terrain.hpp) there would touch memory no run needs.
-    for (int j = 0; j < initial.h.ny(); ++j)
-        for (int i = 0; i < initial.h.nx(); ++i)
+    for (int j = std::max(holding.j0, 0); j < std::min(holding.j1, initial.h.ny()); ++j)
+        for (int i = std::max(holding.i0, 0); i < std::min(holding.i1, initial.h.nx()); ++i)
             if (initial.h(i, j) > 0.0)
                 deepest = std::max(deepest, initial.h(i, j) * terrain.normal_thickness(i, j));
     return deepest > 0.0 ? n.h_min_relative * deepest : n.h_min_relative;
@@ -129,13 +134,17 @@ double effective_h_min(const NumericsParams& n, const State& initial, const Terr
 
 Simulation::Simulation(Grid grid, const TerrainFields& terrain, MaterialParams material,
                        NumericsParams numerics, State initial, double h_min)
+    : Simulation(grid, terrain, material, numerics, std::move(initial), h_min, ActiveBox{0, grid.nx, 0, grid.ny}) {}
+
+Simulation::Simulation(Grid grid, const TerrainFields& terrain, MaterialParams material,
+                       NumericsParams numerics, State initial, double h_min, const ActiveBox& holding)
     : grid_(grid),
       terrain_(terrain),
       material_(material),
       numerics_(numerics),
       state_(std::move(initial)),
       stepper_(grid_, terrain_, material_, numerics_, h_min) {
-    stepper_.reset_active_box(state_);
+    stepper_.reset_active_box(state_, holding);
 }
 
 void Simulation::drain_sinks() {

@@ -3,6 +3,7 @@
 // so it is validated like any scenario), and the prepared scene must hash to the
 // fingerprint recorded with it (a DEM, release or points file that changed since would
 // otherwise silently mix two runs).
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -54,6 +55,18 @@ class Fnv1a {
         value(n);
         for (const std::uint64_t l : lane) value(l);
     }
+    // The cells of box b (clipped to the interior) of a field, row by row.
+    void cells(const Field2D& f, const ActiveBox& b) {
+        const ActiveBox c{std::max(b.i0, 0), std::min(b.i1, f.nx()), std::max(b.j0, 0), std::min(b.j1, f.ny())};
+        value(f.nx());
+        value(f.ny());
+        if (c.empty()) {
+            value(0);
+            return;
+        }
+        for (const int v : {c.i0, c.i1, c.j0, c.j1}) value(v);
+        for (int j = c.j0; j < c.j1; ++j) words(f.row(j) + c.i0, static_cast<std::size_t>(c.i1 - c.i0));
+    }
     [[nodiscard]] std::string hex() const {
         char buf[17];
         std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
@@ -87,7 +100,7 @@ std::string toml_value(const nlohmann::json& v) {
 }  // namespace
 
 std::string scene_fingerprint(const Grid& grid, const TerrainFields& terrain, const State& initial,
-                              const std::vector<std::uint8_t>& sinks,
+                              const ActiveBox& holding, const std::vector<std::uint8_t>& sinks,
                               const std::vector<ProbeLocation>& probes) {
     Fnv1a f;
     f.value(grid.nx);
@@ -109,7 +122,8 @@ std::string scene_fingerprint(const Grid& grid, const TerrainFields& terrain, co
                                      &terrain.cxx, &terrain.cxy, &terrain.cyy, &terrain.sx, &terrain.sy,
                                      &terrain.normal_thickness})
             f.field(*field);
-    for (const Field2D* field : {&terrain.elevation, &initial.h, &initial.hu, &initial.hv}) f.field(*field);
+    f.field(terrain.elevation);
+    for (const Field2D* field : {&initial.h, &initial.hu, &initial.hv}) f.cells(*field, holding);
     f.bytes(sinks.data(), sinks.size());
     for (const ProbeLocation& p : probes) {
         f.bytes(p.name.data(), p.name.size());

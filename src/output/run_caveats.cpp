@@ -1,5 +1,6 @@
 #include "avalanche/output/run_caveats.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -8,28 +9,35 @@ namespace avalanche {
 
 EdgeContact edge_contact(const Grid& grid, std::span<const double> max_depth, double h_threshold,
                          std::span<const std::uint8_t> sinks) {
+    return edge_contact(grid, max_depth, h_threshold, sinks, ActiveBox{0, grid.nx, 0, grid.ny});
+}
+
+EdgeContact edge_contact(const Grid& grid, std::span<const double> max_depth, double h_threshold,
+                         std::span<const std::uint8_t> sinks, const ActiveBox& reach) {
     EdgeContact c;
     const int nx = grid.nx, ny = grid.ny;
     if (nx <= 0 || ny <= 0) return c;
+    const ActiveBox b{std::max(reach.i0, 0), std::min(reach.i1, nx), std::max(reach.j0, 0),
+                      std::min(reach.j1, ny)};
+    if (b.empty()) return c;
     auto k = [nx](int i, int j) { return static_cast<std::size_t>(j) * nx + i; };
     auto reached = [&](int i, int j) { return max_depth[k(i, j)] >= h_threshold; };
-    for (int j = 0; j < ny; ++j) {
-        c.low_i += reached(0, j);
-        c.high_i += reached(nx - 1, j);
+    for (int j = b.j0; j < b.j1; ++j) {
+        if (b.i0 == 0) c.low_i += reached(0, j);
+        if (b.i1 == nx) c.high_i += reached(nx - 1, j);
     }
-    for (int i = 0; i < nx; ++i) {
-        c.low_j += reached(i, 0);
-        c.high_j += reached(i, ny - 1);
+    for (int i = b.i0; i < b.i1; ++i) {
+        if (b.j0 == 0) c.low_j += reached(i, 0);
+        if (b.j1 == ny) c.high_j += reached(i, ny - 1);
     }
     if (sinks.empty()) return c;
     auto sink = [&](int i, int j) {
         return i >= 0 && i < nx && j >= 0 && j < ny && sinks[k(i, j)] != 0;
     };
-    // The mask first (a byte per cell): the depth map is read only beside the sinks.
-    for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i)
-            if ((sink(i, j) || sink(i - 1, j) || sink(i + 1, j) || sink(i, j - 1) || sink(i, j + 1)) &&
-                reached(i, j))
+    for (int j = b.j0; j < b.j1; ++j)
+        for (int i = b.i0; i < b.i1; ++i)
+            if (reached(i, j) &&
+                (sink(i, j) || sink(i - 1, j) || sink(i + 1, j) || sink(i, j - 1) || sink(i, j + 1)))
                 ++c.beside_no_data;
     return c;
 }

@@ -1,5 +1,6 @@
 #include "avalanche/output/runout.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -7,11 +8,16 @@ namespace avalanche {
 
 ReleaseTop release_top(const Grid& grid, const TerrainFields& terrain, const State& initial,
                        double h_threshold) {
+    return release_top(grid, terrain, initial, h_threshold, ActiveBox{0, grid.nx, 0, grid.ny});
+}
+
+ReleaseTop release_top(const Grid& grid, const TerrainFields& terrain, const State& initial,
+                       double h_threshold, const ActiveBox& holding) {
     ReleaseTop top;
     double top_z = -1e300;
-    // Released cells only (their terrain is made, terrain.hpp).
-    for (int j = 0; j < grid.ny; ++j)
-        for (int i = 0; i < grid.nx; ++i)
+    // Released cells only (their terrain is made, terrain.hpp), in row order.
+    for (int j = std::max(holding.j0, 0); j < std::min(holding.j1, grid.ny); ++j)
+        for (int i = std::max(holding.i0, 0); i < std::min(holding.i1, grid.nx); ++i)
             if (initial.h(i, j) > 0.0 && initial.h(i, j) * terrain.normal_thickness(i, j) >= h_threshold &&
                 terrain.elevation(i, j) > top_z) {
                 top_z = terrain.elevation(i, j);

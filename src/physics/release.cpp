@@ -112,7 +112,8 @@ Field2D rasterize_release(const ReleaseShape& r, const Grid& grid, int subsample
 // Only the released cells are written (and their terrain made, terrain.hpp): the state
 // starts as zeros that are not written, so a small release on a large DEM leaves the
 // rest of the grid's memory untouched. Elsewhere h stays 0, as 0 / normal_thickness was.
-State state_at_rest(const Grid& grid, const Field2D& thickness, const TerrainFields& terrain) {
+State state_at_rest(const Grid& grid, const Field2D& thickness, const TerrainFields& terrain,
+                    ActiveBox* released) {
     State s(grid);
     int i0 = grid.nx, i1 = 0, j0 = grid.ny, j1 = 0;
     for (int j = 0; j < grid.ny; ++j) {
@@ -126,6 +127,7 @@ State state_at_rest(const Grid& grid, const Field2D& thickness, const TerrainFie
             }
     }
     terrain.ensure(i0, i1, j0, j1);
+    if (released != nullptr) *released = i1 > i0 ? ActiveBox{i0, i1, j0, j1} : ActiveBox{};
     // The momenta of released cells are written too (zeros, as they were): the first step
     // writes them anyway, and touched here their memory's first touch is the setup's, not
     // the time loop's.

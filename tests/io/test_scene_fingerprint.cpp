@@ -17,6 +17,7 @@ struct Scene {
     Grid grid;
     TerrainFields terrain;
     State initial;
+    ActiveBox holding;  // the whole grid unless a test says otherwise
     std::vector<std::uint8_t> sinks;
     std::vector<ProbeLocation> probes;
 
@@ -33,11 +34,12 @@ struct Scene {
         terrain = dem_terrain(grid, z, 9.81, options);
         initial = State(grid);
         initial.h(3, 2) = 1.5;
+        holding = {0, grid.nx, 0, grid.ny};
         sinks.assign(grid.cells(), 0);
         probes.push_back({"p", 5.0, 3.0, 2, 1});
     }
     [[nodiscard]] std::string fingerprint() const {
-        return scene_fingerprint(grid, terrain, initial, sinks, probes);
+        return scene_fingerprint(grid, terrain, initial, holding, sinks, probes);
     }
 };
 
@@ -102,6 +104,35 @@ TEST(SceneFingerprint, EachInputCounts) {
         std::swap(s.terrain.sx, s.terrain.sy);
         EXPECT_NE(s.fingerprint(), base) << "two fields exchanged";
     }
+}
+
+// Of the initial state, the box that holds its material and the cells in it: every bit
+// of every cell in the box counts, the box itself counts, and the cells outside it (zero
+// by the contract) are not read.
+TEST(SceneFingerprint, TheInitialStateCountsInsideItsBox) {
+    Scene reference;
+    reference.holding = {2, 9, 1, 5};
+    const std::string base = reference.fingerprint();
+    for (int k = 0; k < 3; ++k)
+        for (int j = 1; j < 5; ++j)
+            for (int i = 2; i < 9; ++i) {
+                Scene s;
+                s.holding = reference.holding;
+                Field2D& f = k == 0 ? s.initial.h : (k == 1 ? s.initial.hu : s.initial.hv);
+                f(i, j) = with_bit_flipped(f(i, j), 0);
+                EXPECT_NE(s.fingerprint(), base) << "field " << k << ", cell " << i << ", " << j;
+            }
+    Scene wider;
+    wider.holding = {2, 10, 1, 5};
+    EXPECT_NE(wider.fingerprint(), base) << "the box";
+    Scene outside;
+    outside.holding = reference.holding;
+    outside.initial.hu(9, 1) = 2.0;  // beyond the box: a contract broken, not read
+    outside.initial.h(0, 0) = 1.0;
+    EXPECT_EQ(outside.fingerprint(), base);
+    Scene empty;
+    empty.holding = {};
+    EXPECT_NE(empty.fingerprint(), base);
 }
 
 // Terrain made on demand is identified by its elevation: the digest does not depend on

@@ -44,6 +44,37 @@ TEST(EdgeContact, CountsReachedCellsOnEachSideAndBesideTheNoDataArea) {
     EXPECT_FALSE(edge_contact(g, inside, 0.01, {}).any());
 }
 
+// With the box the maps' cells were reached in (HazardMaps::reach_box) only that box is
+// read: where it holds every reached cell the counts are those of the whole grid, and a
+// cell outside it is not looked at (here one that the box wrongly leaves out).
+TEST(EdgeContact, ReadsOnlyInsideTheReachBox) {
+    const Grid g{6, 4, 10.0, 10.0};
+    std::vector<double> depth(g.cells(), 0.0);
+    auto at = [&](int i, int j) -> double& { return depth[static_cast<std::size_t>(j) * 6 + i]; };
+    at(5, 1) = 0.02;
+    at(5, 3) = 0.5;
+    at(0, 2) = 0.01;
+    at(2, 2) = 1.0;
+    at(3, 2) = 0.3;  // a sink reached
+    std::vector<std::uint8_t> sinks(g.cells(), 0);
+    sinks[2 * 6 + 3] = 1;
+    const EdgeContact whole = edge_contact(g, depth, 0.01, sinks);
+    const EdgeContact boxed = edge_contact(g, depth, 0.01, sinks, ActiveBox{0, 6, 1, 4});
+    EXPECT_EQ(boxed.low_i, whole.low_i);
+    EXPECT_EQ(boxed.high_i, whole.high_i);
+    EXPECT_EQ(boxed.low_j, whole.low_j);
+    EXPECT_EQ(boxed.high_j, whole.high_j);
+    EXPECT_EQ(boxed.beside_no_data, whole.beside_no_data);
+    EXPECT_EQ(whole.low_i, 1);
+    EXPECT_EQ(whole.beside_no_data, 2);
+    const EdgeContact east = edge_contact(g, depth, 0.01, sinks, ActiveBox{1, 6, 0, 4});
+    EXPECT_EQ(east.low_i, 0);
+    EXPECT_EQ(east.high_i, 2);
+    EXPECT_EQ(east.high_j, 1);
+    EXPECT_EQ(east.beside_no_data, 2);
+    EXPECT_FALSE(edge_contact(g, depth, 0.01, sinks, ActiveBox{}).any());
+}
+
 RunStatistics stopped_run() {
     RunStatistics st;
     st.end_reason = EndReason::stopped_kinetic_energy;

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "avalanche/core/simulation.hpp"
 #include "avalanche/core/state.hpp"
 #include "avalanche/io/scenario.hpp"
+#include "avalanche/numerics/active_box.hpp"
 #include "avalanche/output/monitoring.hpp"
 #include "avalanche/output/runout.hpp"
 #include "avalanche/physics/terrain.hpp"
@@ -24,6 +26,11 @@ struct PreparedScene {
     Grid grid;
     TerrainFields terrain;
     State initial;                         // at rest; h in the frame's thickness
+    // A box that holds every cell of `initial` with material (zero outside it), from the
+    // release; none: not known, the whole grid. Everything that reads the initial state
+    // reads only this box (material_box), so that a small release on a large DEM
+    // leaves the rest of the state's memory untouched.
+    std::optional<ActiveBox> initial_box;
     std::array<double, 6> geotransform{};  // GDAL convention: row 0 at the top (max y)
     std::string crs_wkt;                   // empty in the chute frame
     Frame frame = Frame::chute;
@@ -40,6 +47,8 @@ struct PreparedScene {
     HorizontalPosition horizontal_position;
     double cell_area_m2 = 0.0;
     std::vector<std::string> input_files;  // inputs, for the report
+
+    [[nodiscard]] ActiveBox material_box() const { return initial_box.value_or(ActiveBox{0, grid.nx, 0, grid.ny}); }
 };
 
 // Dispatches on the terrain: ChuteGeometry here, DemTerrainSpec to prepare_dem_scene.

@@ -108,6 +108,11 @@ class Simulation {
 public:
     Simulation(Grid grid, const TerrainFields& terrain, MaterialParams material, NumericsParams numerics,
                State initial, double h_min);
+    // The same where the caller knows a box that holds every cell of `initial` with
+    // material (a prepared scene's release box): the first active box is searched in it
+    // only, so a small release on a large DEM does not read the rest of the state.
+    Simulation(Grid grid, const TerrainFields& terrain, MaterialParams material, NumericsParams numerics,
+               State initial, double h_min, const ActiveBox& holding);
 
     void add_observer(StepObserver* o) { observers_.push_back(o); }
     // Cells (index j * nx + i) where material leaves the domain, e.g. outside a DEM's
@@ -171,5 +176,8 @@ private:
 // The automatic thin-layer depth: h_min_relative x the deepest initial cell
 // (bed-normal), unless numerics.h_min is set.
 double effective_h_min(const NumericsParams& n, const State& initial, const TerrainFields& terrain);
+// The same, reading only the cells of `holding`, which holds every cell with material.
+double effective_h_min(const NumericsParams& n, const State& initial, const TerrainFields& terrain,
+                       const ActiveBox& holding);
 
 }  // namespace avalanche

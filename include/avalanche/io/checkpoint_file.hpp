@@ -14,6 +14,7 @@
 #include "avalanche/core/observer.hpp"
 #include "avalanche/core/simulation.hpp"
 #include "avalanche/io/scenario.hpp"
+#include "avalanche/numerics/active_box.hpp"
 #include "avalanche/output/monitoring.hpp"
 
 namespace avalanche {
@@ -60,9 +61,12 @@ CheckpointContents read_checkpoint(const std::string& path);
 
 // Hex digest (64 bit: FNV-1a, the grid-sized arrays a word at a time in four lanes) of
 // the prepared scene: grid geometry, every terrain field, the initial state, the sink
-// mask and the monitoring-point cells.
+// mask and the monitoring-point cells. Of the initial state, `holding` (a box that holds
+// every cell with material, which are zero outside it) and its cells: a small release
+// on a large DEM does not read the rest of the state (on an ASTER-size tile, 0.4 s of
+// page faults a run).
 std::string scene_fingerprint(const Grid& grid, const TerrainFields& terrain, const State& initial,
-                              const std::vector<std::uint8_t>& sinks,
+                              const ActiveBox& holding, const std::vector<std::uint8_t>& sinks,
                               const std::vector<ProbeLocation>& probes);
 
 // The scenario recorded in a checkpoint (its effective configuration), parsed and

@@ -42,8 +42,10 @@ class Stepper {
     // Advances the state by dt over the active box (recomputed from the state).
     void step(State& s, double dt);
 
-    // Recomputes the active box from scratch (after the state was set from outside).
+    // Recomputes the active box from scratch (after the state was set from outside);
+    // with `holding`, a box that holds every cell with material, searched in it only.
     void reset_active_box(const State& s);
+    void reset_active_box(const State& s, const ActiveBox& holding);
 
     [[nodiscard]] const ActiveBox& active_box() const { return box_; }
     [[nodiscard]] double h_min() const { return h_min_; }

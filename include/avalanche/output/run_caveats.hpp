@@ -17,6 +17,7 @@
 
 #include "avalanche/core/grid.hpp"
 #include "avalanche/core/simulation.hpp"
+#include "avalanche/numerics/active_box.hpp"
 #include "avalanche/numerics/parameters.hpp"
 #include "avalanche/output/output_params.hpp"
 #include "avalanche/physics/terrain.hpp"
@@ -35,6 +36,10 @@ struct EdgeContact {
 // max_depth: nx * ny, index j * nx + i; sinks: the same size, or empty for none.
 EdgeContact edge_contact(const Grid& grid, std::span<const double> max_depth, double h_threshold,
                          std::span<const std::uint8_t> sinks);
+// The same where no cell outside `reach` is reached (the maps' HazardMaps::reach_box),
+// read only inside it: on a tile of 13 M cells the whole grid took 0.13 s a run.
+EdgeContact edge_contact(const Grid& grid, std::span<const double> max_depth, double h_threshold,
+                         std::span<const std::uint8_t> sinks, const ActiveBox& reach);
 
 struct RunCaveat {
     std::string code;     // "reached_edge" or "not_stopped"

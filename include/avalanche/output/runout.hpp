@@ -15,6 +15,7 @@
 
 #include "avalanche/core/grid.hpp"
 #include "avalanche/core/state.hpp"
+#include "avalanche/numerics/active_box.hpp"
 #include "avalanche/output/hazard_maps.hpp"
 #include "avalanche/physics/terrain.hpp"
 
@@ -46,6 +47,9 @@ struct ReleaseTop {
 };
 ReleaseTop release_top(const Grid& grid, const TerrainFields& terrain, const State& initial,
                        double h_threshold);
+// The same, reading only the cells of `holding`, which holds every cell with material.
+ReleaseTop release_top(const Grid& grid, const TerrainFields& terrain, const State& initial,
+                       double h_threshold, const ActiveBox& holding);
 
 // cell_area_m2: horizontal area of a cell (the DEM frame's dx dy; in the chute
 // frame the bed area is used, as the chute has no map projection).

@@ -7,6 +7,7 @@
 
 #include "avalanche/core/grid.hpp"
 #include "avalanche/core/state.hpp"
+#include "avalanche/numerics/active_box.hpp"
 #include "avalanche/physics/terrain.hpp"
 
 namespace avalanche {
@@ -36,7 +37,9 @@ double release_thickness_at(const ReleaseShape& r, double x, double y);
 Field2D rasterize_release(const ReleaseShape& r, const Grid& grid, int subsamples = 8);
 
 // Initial state at rest from a bed-normal thickness field: h = thickness / normal_thickness.
+// With `released`, also the bounding box of the released cells: every cell of the state
+// outside it is zero (empty when nothing is released).
 State state_at_rest(const Grid& grid, const Field2D& normal_thickness_of_release,
-                    const TerrainFields& terrain);
+                    const TerrainFields& terrain, ActiveBox* released = nullptr);
 
 }  // namespace avalanche
