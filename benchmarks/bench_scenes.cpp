@@ -64,8 +64,9 @@ Scene paper_chute(double cell_size, Scheme scheme) {
     s.numerics.scheme = scheme;
     s.numerics.t_end = 60.0;
     s.numerics.output_interval = 60.0;
+    const ReleaseShape cap = CapRelease{{7.5, 20.0}, 2.5};
     s.initial =
-        state_at_rest(s.grid, rasterize_release(CapRelease{{7.5, 20.0}, 2.5}, s.grid), s.terrain, &s.released);
+        state_at_rest(s.grid, rasterize_release(cap, s.grid), s.terrain, release_cells(cap, s.grid), &s.released);
     finish(s);
     return s;
 }
@@ -96,9 +97,9 @@ Scene valley(int nx, int ny, double cell_size, double x0, double y0, const Valle
     s.numerics.output_interval = t_end;
     // The release is placed in world coordinates (the grid's x0, y0 included), so a
     // crop and the full DEM hold the same release up to round-off.
-    s.initial = state_at_rest(
-        s.grid, rasterize_release(ParaboloidRelease{{r.xc, r.yc}, r.radius, r.thickness}, s.grid),
-        s.terrain, &s.released);
+    const ReleaseShape shape = ParaboloidRelease{{r.xc, r.yc}, r.radius, r.thickness};
+    s.initial = state_at_rest(s.grid, rasterize_release(shape, s.grid), s.terrain, release_cells(shape, s.grid),
+                              &s.released);
     finish(s);
     return s;
 }

@@ -22,7 +22,8 @@ PreparedScene prepare_chute_scene(const Scenario& s) {
     p.grid = chute_grid(chute, s.cell_size);
     p.terrain = chute_terrain(chute, p.grid, s.numerics.gravity);
     p.initial_box.emplace();
-    p.initial = state_at_rest(p.grid, rasterize_release(*shape, p.grid), p.terrain, &*p.initial_box);
+    p.initial = state_at_rest(p.grid, rasterize_release(*shape, p.grid), p.terrain, release_cells(*shape, p.grid),
+                              &*p.initial_box);
     if (total_volume(p.initial, p.grid, *p.initial_box) <= 0.0)
         throw ConfigError(where + "release", "the release shape does not overlap the chute [0, " +
                                                  std::to_string(chute.length) + "] x [0, " +

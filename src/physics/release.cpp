@@ -79,8 +79,16 @@ double release_thickness_at(const ReleaseShape& r, double x, double y) {
     return std::visit(ThicknessAt{x, y}, r);
 }
 
+ActiveBox release_cells(const ReleaseShape& r, const Grid& grid) {
+    const Extent e = std::visit(ExtentOf{}, r);
+    const auto [i0, i1] = cells_over(e.x0, e.x1, grid.x0, grid.dx, grid.nx);
+    const auto [j0, j1] = cells_over(e.y0, e.y1, grid.y0, grid.dy, grid.ny);
+    return i1 > i0 && j1 > j0 ? ActiveBox{i0, i1, j0, j1} : ActiveBox{};
+}
+
 Field2D rasterize_release(const ReleaseShape& r, const Grid& grid, int subsamples) {
-    Field2D out(grid.nx, grid.ny, kGhostLayers, 0.0);
+    // Zeros left unwritten (field_storage.hpp): only the shape's cells are written.
+    Field2D out(grid.nx, grid.ny, kGhostLayers);
     const double inv = 1.0 / (subsamples * subsamples);
     // Sub-sample rows are summed in mirror pairs (b, n-1-b), so that a release
     // symmetric about a cell edge rasterizes to bitwise-symmetric cells: the
@@ -95,11 +103,9 @@ Field2D rasterize_release(const ReleaseShape& r, const Grid& grid, int subsample
     // Only the cells over the shape's extent are sampled (8 x 8 samples a cell: on a
     // 2000 x 2000 grid the whole grid took half a second for a release of 10 x 10 cells);
     // every sample outside the extent is zero, so the field is the same to the bit.
-    const Extent e = std::visit(ExtentOf{}, r);
-    const auto [i0, i1] = cells_over(e.x0, e.x1, grid.x0, grid.dx, grid.nx);
-    const auto [j0, j1] = cells_over(e.y0, e.y1, grid.y0, grid.dy, grid.ny);
-    for (int j = j0; j < j1; ++j) {
-        for (int i = i0; i < i1; ++i) {
+    const ActiveBox cells = release_cells(r, grid);
+    for (int j = cells.j0; j < cells.j1; ++j) {
+        for (int i = cells.i0; i < cells.i1; ++i) {
             double sum = 0.0;
             for (int b = 0; b < subsamples / 2; ++b) sum += row_sum(i, j, b) + row_sum(i, j, subsamples - 1 - b);
             if (subsamples % 2) sum += row_sum(i, j, subsamples / 2);
@@ -114,11 +120,16 @@ Field2D rasterize_release(const ReleaseShape& r, const Grid& grid, int subsample
 // rest of the grid's memory untouched. Elsewhere h stays 0, as 0 / normal_thickness was.
 State state_at_rest(const Grid& grid, const Field2D& thickness, const TerrainFields& terrain,
                     ActiveBox* released) {
+    return state_at_rest(grid, thickness, terrain, ActiveBox{0, grid.nx, 0, grid.ny}, released);
+}
+
+State state_at_rest(const Grid& grid, const Field2D& thickness, const TerrainFields& terrain,
+                    const ActiveBox& within, ActiveBox* released) {
     State s(grid);
     int i0 = grid.nx, i1 = 0, j0 = grid.ny, j1 = 0;
-    for (int j = 0; j < grid.ny; ++j) {
+    for (int j = std::max(within.j0, 0); j < std::min(within.j1, grid.ny); ++j) {
         const double* row = thickness.row(j);
-        for (int i = 0; i < grid.nx; ++i)
+        for (int i = std::max(within.i0, 0); i < std::min(within.i1, grid.nx); ++i)
             if (row[i] != 0.0) {
                 i0 = std::min(i0, i);
                 i1 = std::max(i1, i + 1);

@@ -122,3 +122,34 @@ TEST(InitialBox, ASmallReleaseOnALargeGridIsReadOnlyInItsBox) {
     EXPECT_GE(top.i, 700);
     EXPECT_FALSE(sim.stepper().active_box().empty());
 }
+
+// An analytic shape's field is zero outside the cells over its extent (release_cells), so
+// its state at rest is searched there only: the same state and box as the whole grid's.
+TEST(InitialBox, AShapesStateIsSearchedInTheCellsOverItsExtent) {
+    const Grid g{60, 45, 2.0, 2.0, 100.0, 50.0};
+    const TerrainFields t = bumpy_plane(g);
+    const ReleaseShape shapes[] = {CapRelease{{150.0, 90.0}, 7.0},
+                                   ParaboloidRelease{{110.0, 60.0}, 15.0, 2.0},  // over the corner
+                                   BoxRelease{{181.0, 230.0}, {120.0, 139.0}, 1.5}};
+    for (const ReleaseShape& shape : shapes) {
+        const Field2D f = rasterize_release(shape, g);
+        const ActiveBox cells = release_cells(shape, g);
+        long outside = 0, inside = 0;
+        for (int j = -kGhostLayers; j < g.ny + kGhostLayers; ++j)
+            for (int i = -kGhostLayers; i < g.nx + kGhostLayers; ++i) {
+                const bool in = i >= cells.i0 && i < cells.i1 && j >= cells.j0 && j < cells.j1;
+                (in ? inside : outside) += f(i, j) != 0.0;
+            }
+        EXPECT_EQ(outside, 0);
+        EXPECT_GT(inside, 0);
+        ActiveBox a, b;
+        const State whole = state_at_rest(g, f, t, &a);
+        const State searched = state_at_rest(g, f, t, cells, &b);
+        EXPECT_EQ(std::memcmp(whole.h.raw().data(), searched.h.raw().data(), whole.h.raw().size() * sizeof(double)),
+                  0);
+        EXPECT_EQ(a.i0, b.i0);
+        EXPECT_EQ(a.i1, b.i1);
+        EXPECT_EQ(a.j0, b.j0);
+        EXPECT_EQ(a.j1, b.j1);
+    }
+}

@@ -35,11 +35,17 @@ double release_thickness_at(const ReleaseShape& r, double x, double y);
 
 // Cell-averaged bed-normal thickness on the grid (interior cells, ghosts zero).
 Field2D rasterize_release(const ReleaseShape& r, const Grid& grid, int subsamples = 8);
+// The cells over the shape's extent: rasterize_release's field is zero outside them.
+ActiveBox release_cells(const ReleaseShape& r, const Grid& grid);
 
 // Initial state at rest from a bed-normal thickness field: h = thickness / normal_thickness.
 // With `released`, also the bounding box of the released cells: every cell of the state
 // outside it is zero (empty when nothing is released).
 State state_at_rest(const Grid& grid, const Field2D& normal_thickness_of_release,
                     const TerrainFields& terrain, ActiveBox* released = nullptr);
+// The same where the thickness is zero outside `within` (release_cells of the shape it
+// was rasterised from), read only inside it.
+State state_at_rest(const Grid& grid, const Field2D& normal_thickness_of_release,
+                    const TerrainFields& terrain, const ActiveBox& within, ActiveBox* released = nullptr);
 
 }  // namespace avalanche
