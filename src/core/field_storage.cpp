@@ -51,7 +51,8 @@ void* allocate_field_bytes(std::size_t bytes) {
 
 void* allocate_page_bytes(std::size_t bytes) {
 #if defined(__linux__)
-    const std::size_t size = mapped_bytes(bytes == 0 ? 1 : bytes);
+    if (bytes < kPageMappedMinBytes) return allocate_field_bytes(bytes);
+    const std::size_t size = mapped_bytes(bytes);
     void* p = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (p == MAP_FAILED) throw std::bad_alloc();
 #if defined(MADV_NOHUGEPAGE)
@@ -68,7 +69,11 @@ void* allocate_page_bytes(std::size_t bytes) {
 void free_page_bytes(void* p, std::size_t bytes) noexcept {
     if (p == nullptr) return;
 #if defined(__linux__)
-    munmap(p, mapped_bytes(bytes == 0 ? 1 : bytes));
+    if (bytes < kPageMappedMinBytes) {
+        free_field_bytes(p, bytes);
+        return;
+    }
+    munmap(p, mapped_bytes(bytes));
 #else
     free_field_bytes(p, bytes);
 #endif

@@ -32,6 +32,7 @@ namespace avalanche {
 
 inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 inline constexpr std::size_t kHugePageMinBytes = std::size_t{4} << 20;
+inline constexpr std::size_t kPageMappedMinBytes = std::size_t{256} << 10;
 
 // Zeroed bytes for a field, 64-byte aligned (a cache line, an AVX-512 vector); from
 // kHugePageMinBytes on, a mapping of its own on a 2 MiB boundary, in small pages
@@ -47,11 +48,14 @@ void free_field_bytes(void* p, std::size_t bytes) noexcept;
 // than Linux, or where the kernel declines (THP off), nothing changes.
 void advise_written_whole(void* p, std::size_t bytes) noexcept;
 
-// Zeroed bytes in a mapping of their own whatever their size (Linux; elsewhere as
-// allocate_field_bytes), in small pages: an array of which only some columns are
-// ever written holds only their pages. The advection's strip buffers are such arrays:
-// grid-wide rows of which a small flow on a large DEM writes the few columns of its
-// box (2 x 20 MB a run on an ASTER-size tile's 3601 columns, written whole before).
+// Zeroed bytes for an array written only in part: from kPageMappedMinBytes on (Linux),
+// a mapping of its own in small pages, so that it holds only the pages written; below,
+// as allocate_field_bytes (the heap, zeroed). The advection's strip buffers are such
+// arrays: grid-wide rows of which a small flow on a large DEM writes the few columns of
+// its box (2 x 20 MB a run on an ASTER-size tile's 3601 columns, written whole before).
+// Small arrays stay on the heap, whose pages a later run in the same process (a batch,
+// a benchmark's repetitions) finds made: mapped afresh, the 30 arrays of 39 kB of a
+// 200-column grid cost each run 600 page faults, 6-13 % of benchmark (d)'s crop.
 // Free with free_page_bytes and the same size.
 void* allocate_page_bytes(std::size_t bytes);
 void free_page_bytes(void* p, std::size_t bytes) noexcept;
