@@ -299,7 +299,7 @@ std::string scene_fingerprint_of(const PreparedScene& scene, const State& initia
 }
 
 RunOutcome execute_scene(const PreparedScene& scene, const Scenario& s, const RunOptions& options) {
-    return execute(scene, scene.initial, s, options);
+    return execute(scene, scene.initial_copy(), s, options);
 }
 
 RunOutcome execute_scene(PreparedScene&& scene, const Scenario& s, const RunOptions& options) {

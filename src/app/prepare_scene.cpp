@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <sstream>
 
 #include "avalanche/app/prepare_dem.hpp"
@@ -42,6 +43,17 @@ PreparedScene prepare_chute_scene(const Scenario& s) {
 }
 
 }  // namespace
+
+State PreparedScene::initial_copy() const {
+    if (!initial_box) return initial;
+    State copy(grid);
+    const ActiveBox& b = *initial_box;
+    const auto width = static_cast<std::size_t>(std::max(b.i1 - b.i0, 0));
+    for (int j = b.j0; j < b.j1; ++j)
+        for (const auto field : {&State::h, &State::hu, &State::hv})
+            std::copy_n((initial.*field).row(j) + b.i0, width, (copy.*field).row(j) + b.i0);
+    return copy;
+}
 
 PreparedScene prepare_scene(const Scenario& s) {
     if (std::holds_alternative<DemTerrainSpec>(s.terrain)) return prepare_dem_scene(s);
