@@ -10,23 +10,10 @@
 #include "avalanche/app/prepared_scene.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
-
-#if defined(__linux__)
-#include <sys/resource.h>
-#endif
+#include "support/resident_memory.hpp"
 
 namespace avalanche {
 namespace {
-
-long minor_faults() {
-#if defined(__linux__)
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return u.ru_minflt;
-#else
-    return -1;
-#endif
-}
 
 bool same_bits(const Field2D& a, const Field2D& b) {
     return a.raw().size() == b.raw().size() &&
@@ -54,11 +41,11 @@ PreparedScene small_release_on(const Grid& g) {
 }
 
 TEST(InitialCopy, IsTheStateToTheBitAndWritesOnlyTheReleasesBox) {
-    if (minor_faults() < 0) GTEST_SKIP() << "no getrusage page-fault counts";
+    if (test::minor_page_faults() < 0) GTEST_SKIP() << "no getrusage page-fault counts";
     const PreparedScene p = small_release_on(Grid{2000, 1000, 10.0, 10.0});  // 16 MB a field
-    const long before = minor_faults();
+    const long before = test::minor_page_faults();
     const State copy = p.initial_copy();
-    const long faults = minor_faults() - before;
+    const long faults = test::minor_page_faults() - before;
     EXPECT_LT(faults, 500) << "the whole state was written (about 12 000 pages)";
     EXPECT_TRUE(same_bits(copy.h, p.initial.h));
     EXPECT_TRUE(same_bits(copy.hu, p.initial.hu));

@@ -6,6 +6,7 @@
 
 #if defined(__linux__)
 #include <sys/mman.h>
+#include <sys/resource.h>
 #endif
 
 namespace avalanche::test {
@@ -18,6 +19,18 @@ inline long long resident_bytes() {
     const int n = std::fscanf(f, "%lld %lld", &pages, &resident);
     std::fclose(f);
     return n == 2 ? resident * 4096 : -1;
+}
+
+// Minor page faults of this process so far (getrusage), or -1. Unlike the resident
+// memory, it counts a first read of an untouched page too (mapped to the zero page).
+inline long minor_page_faults() {
+#if defined(__linux__)
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return u.ru_minflt;
+#else
+    return -1;
+#endif
 }
 
 // Whether this kernel maps a read of an untouched anonymous page to the shared zero page

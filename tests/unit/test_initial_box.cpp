@@ -14,10 +14,7 @@
 #include "avalanche/output/runout.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
-
-#if defined(__linux__)
-#include <sys/resource.h>
-#endif
+#include "support/resident_memory.hpp"
 
 using namespace avalanche;
 
@@ -37,16 +34,6 @@ TerrainFields bumpy_plane(const Grid& g) {
 }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
-long minor_faults() {
-#if defined(__linux__)
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return u.ru_minflt;
-#else
-    return -1;
-#endif
-}
 
 }  // namespace
 
@@ -102,7 +89,7 @@ TEST(InitialBox, ItsReadersGiveTheWholeGridsValues) {
 // Read whole, the three untouched 16 MB fields of this state fault about 12 000 pages in
 // (each read maps a page, the shared zero page or one of its own); in the box, a few.
 TEST(InitialBox, ASmallReleaseOnALargeGridIsReadOnlyInItsBox) {
-    if (minor_faults() < 0) GTEST_SKIP() << "no getrusage page-fault counts";
+    if (test::minor_page_faults() < 0) GTEST_SKIP() << "no getrusage page-fault counts";
     const Grid g{2000, 1000, 10.0, 10.0};
     const TerrainFields t = bumpy_plane(g);
     ActiveBox box;
@@ -111,12 +98,12 @@ TEST(InitialBox, ASmallReleaseOnALargeGridIsReadOnlyInItsBox) {
         for (int i = 700; i < 712; ++i) thickness(i, j) = 1.0;
     State s = state_at_rest(g, thickness, t, &box);
     NumericsParams n;
-    const long before = minor_faults();
+    const long before = test::minor_page_faults();
     const double volume = total_volume(s, g, box);
     const double h_min = effective_h_min(n, s, t, box);
     const ReleaseTop top = release_top(g, t, s, 0.01, box);
     const Simulation sim(g, t, MaterialParams{}, n, std::move(s), h_min, box);  // a copy writes
-    const long faults = minor_faults() - before;
+    const long faults = test::minor_page_faults() - before;
     EXPECT_LT(faults, 1000) << "the initial state was read beyond the release's box";
     EXPECT_GT(volume, 0.0);
     EXPECT_GE(top.i, 700);
