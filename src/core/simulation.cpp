@@ -56,9 +56,10 @@ double total_volume(const State& s, const Grid& g) { return total_volume(s, g, A
 
 double total_volume(const State& s, const Grid& g, const ActiveBox& holding) {
     long double sum = 0.0L;
-    for (int j = holding.j0; j < holding.j1; ++j) {
+    const ActiveBox b = holding.clipped(g.nx, g.ny);
+    for (int j = b.j0; j < b.j1; ++j) {
         const double* h = s.h.row(j);
-        for (int i = holding.i0; i < holding.i1; ++i) sum += h[i];
+        for (int i = b.i0; i < b.i1; ++i) sum += h[i];
     }
     return static_cast<double>(sum * g.cell_area());
 }
@@ -125,8 +126,9 @@ double effective_h_min(const NumericsParams& n, const State& initial, const Terr
     double deepest = 0.0;
     // The terrain of released cells only: elsewhere h = 0, and reading a terrain made on
     // demand (terrain.hpp) there would touch memory no run needs.
-    for (int j = std::max(holding.j0, 0); j < std::min(holding.j1, initial.h.ny()); ++j)
-        for (int i = std::max(holding.i0, 0); i < std::min(holding.i1, initial.h.nx()); ++i)
+    const ActiveBox b = holding.clipped(initial.h.nx(), initial.h.ny());
+    for (int j = b.j0; j < b.j1; ++j)
+        for (int i = b.i0; i < b.i1; ++i)
             if (initial.h(i, j) > 0.0)
                 deepest = std::max(deepest, initial.h(i, j) * terrain.normal_thickness(i, j));
     return deepest > 0.0 ? n.h_min_relative * deepest : n.h_min_relative;

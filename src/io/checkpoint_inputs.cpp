@@ -3,7 +3,6 @@
 // so it is validated like any scenario), and the prepared scene must hash to the
 // fingerprint recorded with it (a DEM, release or points file that changed since would
 // otherwise silently mix two runs).
-#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -57,7 +56,7 @@ class Fnv1a {
     }
     // The cells of box b (clipped to the interior) of a field, row by row.
     void cells(const Field2D& f, const ActiveBox& b) {
-        const ActiveBox c{std::max(b.i0, 0), std::min(b.i1, f.nx()), std::max(b.j0, 0), std::min(b.j1, f.ny())};
+        const ActiveBox c = b.clipped(f.nx(), f.ny());
         value(f.nx());
         value(f.ny());
         if (c.empty()) {

@@ -175,9 +175,7 @@ void Stepper::set_held_at_rest(CellVector<HeldFlag> held) {
 void Stepper::reset_active_box(const State& s) { reset_active_box(s, ActiveBox{0, grid_.nx, 0, grid_.ny}); }
 
 void Stepper::reset_active_box(const State& s, const ActiveBox& holding) {
-    const ActiveBox search{std::max(holding.i0, 0), std::min(holding.i1, grid_.nx), std::max(holding.j0, 0),
-                           std::min(holding.j1, grid_.ny)};
-    shrink_box_to_wet(s, search.empty() ? ActiveBox{0, 0, 0, 0} : search);
+    shrink_box_to_wet(s, holding.clipped(grid_.nx, grid_.ny));
 }
 
 // ---------------------------------------------------------------- boundaries

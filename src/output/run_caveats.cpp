@@ -1,6 +1,5 @@
 #include "avalanche/output/run_caveats.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -17,8 +16,7 @@ EdgeContact edge_contact(const Grid& grid, std::span<const double> max_depth, do
     EdgeContact c;
     const int nx = grid.nx, ny = grid.ny;
     if (nx <= 0 || ny <= 0) return c;
-    const ActiveBox b{std::max(reach.i0, 0), std::min(reach.i1, nx), std::max(reach.j0, 0),
-                      std::min(reach.j1, ny)};
+    const ActiveBox b = reach.clipped(nx, ny);
     if (b.empty()) return c;
     auto k = [nx](int i, int j) { return static_cast<std::size_t>(j) * nx + i; };
     auto reached = [&](int i, int j) { return max_depth[k(i, j)] >= h_threshold; };

@@ -16,8 +16,9 @@ ReleaseTop release_top(const Grid& grid, const TerrainFields& terrain, const Sta
     ReleaseTop top;
     double top_z = -1e300;
     // Released cells only (their terrain is made, terrain.hpp), in row order.
-    for (int j = std::max(holding.j0, 0); j < std::min(holding.j1, grid.ny); ++j)
-        for (int i = std::max(holding.i0, 0); i < std::min(holding.i1, grid.nx); ++i)
+    const ActiveBox b = holding.clipped(grid.nx, grid.ny);
+    for (int j = b.j0; j < b.j1; ++j)
+        for (int i = b.i0; i < b.i1; ++i)
             if (initial.h(i, j) > 0.0 && initial.h(i, j) * terrain.normal_thickness(i, j) >= h_threshold &&
                 terrain.elevation(i, j) > top_z) {
                 top_z = terrain.elevation(i, j);

@@ -127,9 +127,10 @@ State state_at_rest(const Grid& grid, const Field2D& thickness, const TerrainFie
                     const ActiveBox& within, ActiveBox* released) {
     State s(grid);
     int i0 = grid.nx, i1 = 0, j0 = grid.ny, j1 = 0;
-    for (int j = std::max(within.j0, 0); j < std::min(within.j1, grid.ny); ++j) {
+    const ActiveBox search = within.clipped(grid.nx, grid.ny);
+    for (int j = search.j0; j < search.j1; ++j) {
         const double* row = thickness.row(j);
-        for (int i = std::max(within.i0, 0); i < std::min(within.i1, grid.nx); ++i)
+        for (int i = search.i0; i < search.i1; ++i)
             if (row[i] != 0.0) {
                 i0 = std::min(i0, i);
                 i1 = std::max(i1, i + 1);

@@ -21,6 +21,11 @@ struct ActiveBox {
         if (empty()) return *this;
         return {std::max(0, i0 - m), std::min(nx, i1 + m), std::max(0, j0 - m), std::min(ny, j1 + m)};
     }
+    // The cells of the box on a grid of nx x ny cells (an empty box where none are).
+    [[nodiscard]] ActiveBox clipped(int nx, int ny) const {
+        const ActiveBox c{std::max(i0, 0), std::min(i1, nx), std::max(j0, 0), std::min(j1, ny)};
+        return c.empty() ? ActiveBox{} : c;
+    }
     // The smallest box holding both (an empty box holds nothing).
     [[nodiscard]] ActiveBox united(const ActiveBox& o) const {
         if (o.empty()) return *this;
