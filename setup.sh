@@ -5,7 +5,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libgdal-dev gdal-bin libproj-dev proj-bin
-  libeigen3-dev libhdf5-dev hdf5-tools libdeflate-dev
+  libeigen3-dev libhdf5-dev hdf5-tools libdeflate-dev libssl-dev
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libspdlog-dev nlohmann-json3-dev libtomlplusplus-dev
   openmpi-bin libopenmpi-dev          # batch across machines (mpirun)

@@ -1,8 +1,8 @@
 #pragma once
 // SHA-256 (FIPS 180-4) of a byte string or a file, as 64 lower-case hex digits: the
 // checksums of a run's input files in its report, so that a reader can tell whether the
-// DEM and release they hold are the ones the maps were computed from. (GDAL has one,
-// CPL_SHA256, but Debian does not install its header cpl_sha256.h.)
+// DEM and release they hold are the ones the maps were computed from. Computed by
+// OpenSSL's libcrypto (sha256.cpp).
 #include <string>
 #include <string_view>
 
