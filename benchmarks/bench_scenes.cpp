@@ -1,5 +1,6 @@
 #include "bench_scenes.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -15,13 +16,16 @@ namespace {
 constexpr double kGravity = 9.81;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-// Elevations of a DEM grid from a function of the cell centre (solver orientation).
+// Elevations of a DEM grid from a function of the cell centre (solver orientation);
+// adds the seconds it took to `seconds`.
 template <class F>
-std::vector<double> sample_dem(const Grid& g, F z_of) {
+std::vector<double> sample_dem(const Grid& g, F z_of, double& seconds) {
+    const auto t0 = std::chrono::steady_clock::now();
     std::vector<double> z(g.cells());
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i)
             z[static_cast<std::size_t>(j) * g.nx + i] = z_of(g.x_center(i), g.y_center(j));
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return z;
 }
 
@@ -38,7 +42,7 @@ Scene tilted_plane(int n, double cell_size, double slope_deg, double thickness, 
     const double tan_t = std::tan(slope_deg * kDeg);
     const double x_max = s.grid.x_max();
     s.terrain = dem_terrain(
-        s.grid, sample_dem(s.grid, [&](double x, double) { return (x_max - x) * tan_t; }),
+        s.grid, sample_dem(s.grid, [&](double x, double) { return (x_max - x) * tan_t; }, s.dem_seconds),
         kGravity);
     s.material.phi_deg = 35.0;
     s.material.delta_deg = 20.0;
@@ -89,7 +93,7 @@ Scene valley(int nx, int ny, double cell_size, double x0, double y0, const Valle
     Scene s;
     s.name = "valley";
     s.grid = Grid{nx, ny, cell_size, cell_size, x0, y0};
-    s.terrain = dem_terrain(s.grid, sample_dem(s.grid, valley_elevation), kGravity);
+    s.terrain = dem_terrain(s.grid, sample_dem(s.grid, valley_elevation, s.dem_seconds), kGravity);
     s.material.phi_deg = 25.0;
     s.material.delta_deg = 12.5;
     s.numerics.scheme = scheme;

@@ -22,6 +22,10 @@ struct Scene {
     State initial;
     ActiveBox released;  // holds every cell of initial with material (state_at_rest)
     double h_min = 0.0;
+    // Of the scene's making, the seconds its DEM's elevations took to sample from their
+    // function: the benchmark's stand-in for reading a DEM file, which a run of the tool
+    // does with GDAL instead (0 for the chute, whose terrain is analytic).
+    double dem_seconds = 0.0;
 };
 
 // (a) Tilted-plane DEM of n x n cells of cell_size m falling along +x at slope_deg,

@@ -63,7 +63,7 @@ void print(const RunRecord& r) {
               << ", " << r.splitting << ", " << r.threads << " thread" << (r.threads > 1 ? "s" : "")
               << "), grid " << r.nx << " x " << r.ny << "\n  wall " << r.best_wall()
               << " s (best of [" << walls.str() << "]), setup " << r.setup_seconds
-              << " s\n  simulated " << r.simulated_time << " s in " << r.steps
+              << " s (of which sampling the DEM " << r.dem_seconds << " s)\n  simulated " << r.simulated_time << " s in " << r.steps
               << " steps, end: " << r.end_reason << "\n  cell updates "
               << static_cast<double>(r.cell_updates) << ", " << r.cell_updates_per_second() / 1e6
               << " M/s\n  peak memory " << r.peak_rss_bytes / 1048576.0
@@ -92,7 +92,8 @@ void append_json(const RunRecord& r, const std::string& path) {
       << ", \"scene\": " << quoted(r.scene) << ", \"scheme\": " << quoted(r.scheme)
       << ", \"splitting\": " << quoted(r.splitting)
       << ", \"threads\": " << r.threads << ", \"nx\": " << r.nx << ", \"ny\": " << r.ny
-      << ", \"setup_seconds\": " << r.setup_seconds << ", \"wall_seconds\": [";
+      << ", \"setup_seconds\": " << r.setup_seconds << ", \"dem_seconds\": " << r.dem_seconds
+      << ", \"wall_seconds\": [";
     for (std::size_t k = 0; k < r.wall_seconds.size(); ++k)
         o << (k ? ", " : "") << r.wall_seconds[k];
     o << "], \"cpu_seconds\": [";

@@ -14,6 +14,7 @@ struct RunRecord {
     int threads = 1;      // omp_get_max_threads() during the run
     int nx = 0, ny = 0;
     double setup_seconds = 0.0;        // terrain, release and Simulation construction
+    double dem_seconds = 0.0;          // of setup_seconds: sampling the DEM (Scene::dem_seconds)
     std::vector<double> wall_seconds;  // of Simulation::run, one per repetition
     // CPU time of the process (all threads) during each Simulation::run. On one thread
     // cpu / wall below 1 means the run was descheduled: the machine was busy and the
