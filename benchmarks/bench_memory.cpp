@@ -32,7 +32,7 @@ constexpr std::size_t kCells = 1000 * 1000;
 
 double min_of(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
 
-// The fields, shared by the benchmark's threads (each writes only its half).
+// The fields of one benchmark, shared by its OpenMP threads (each writes only its share).
 struct Fields {
     std::vector<std::vector<double>> in, out;
     Fields(int reads, int writes)
@@ -47,8 +47,8 @@ template <int R, int W>
 double pass(Fields& f, std::size_t c0, std::size_t c1) {
     std::array<const double*, R> in;
     std::array<double*, W> out;
-    for (int r = 0; r < R; ++r) in[static_cast<std::size_t>(r)] = f.in[static_cast<std::size_t>(r)].data();
-    for (int w = 0; w < W; ++w) out[static_cast<std::size_t>(w)] = f.out[static_cast<std::size_t>(w)].data();
+    for (std::size_t r = 0; r < in.size(); ++r) in[r] = f.in[r].data();
+    for (std::size_t w = 0; w < out.size(); ++w) out[w] = f.out[w].data();
     double total = 0.0;
 #pragma omp simd reduction(+ : total)
     for (std::size_t c = c0; c < c1; ++c) {
