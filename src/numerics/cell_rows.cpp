@@ -172,7 +172,7 @@ AVALANCHE_SIMD_CLONES StateRowScan scan_clone(const double* __restrict h,
         const double e = (qx * qx + qy * qy) / hh;  // 0 / 0 on a dry cell, discarded
         energy[l] += hh > 0.0 ? e : 0.0;
         bad[l] += bad_cell(hh, qx, qy) ? 1.0 : 0.0;
-        moving[l] += (qx != 0.0) | (qy != 0.0) ? 1.0 : 0.0;
+        moving[l] += ((qx != 0.0) | (qy != 0.0)) ? 1.0 : 0.0;
     };
     const int whole = i0 + (i1 - i0) / kScanLanes * kScanLanes;
     for (int a = i0; a < whole; a += kScanLanes) {

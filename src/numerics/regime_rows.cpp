@@ -141,9 +141,15 @@ constexpr int kBlock = 16;
 
 // Without tree-PRE: GCC 12 otherwise carries loads of one cell's neighbours over to the
 // next cell, a loop-carried value its vectoriser rejects ("unknown def-use cycle"), and
-// the loop stayed scalar: 10.6-29 ns per cell against 3.5 (bench_row_kernels).
+// the loop stayed scalar: 10.6-29 ns per cell against 3.5 (bench_row_kernels). The
+// attribute is GCC's; clang (the sanitizer build) has no such pass to turn off.
+#if defined(__clang__)
+#define AVALANCHE_NO_TREE_PRE
+#else
+#define AVALANCHE_NO_TREE_PRE __attribute__((optimize("no-tree-pre")))
+#endif
 template <bool Both>
-__attribute__((optimize("no-tree-pre"))) AVALANCHE_SIMD_CLONES void from_terms_clone(
+AVALANCHE_NO_TREE_PRE AVALANCHE_SIMD_CLONES void from_terms_clone(
     const RegimeRowInput& input, const RegimeRowTerms& terms, RegimeFlags* regime, int i0, int i1,
     int lo, int hi) {
     // Local copies, so that GCC need not prove that the stores through regime leave the

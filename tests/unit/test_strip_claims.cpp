@@ -105,7 +105,9 @@ TEST(StripClaims, ConcurrentClaimsCoverEveryStripOnceInRuns) {
                 const StripClaims::Claim& k = claims[q];
                 ++count[static_cast<std::size_t>(k.strip)];
                 EXPECT_EQ(k.starts, !open) << "round " << round << " strip " << k.strip;
-                if (open) EXPECT_EQ(k.strip, claims[q - 1].strip + 1) << "round " << round;
+                if (open) {
+                    EXPECT_EQ(k.strip, claims[q - 1].strip + 1) << "round " << round;
+                }
                 open = !k.ends;
             }
             EXPECT_FALSE(open) << "round " << round;  // every run ended
