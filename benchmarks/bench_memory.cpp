@@ -18,7 +18,6 @@
 // rate, that is the slowest repetition's.
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstddef>
@@ -26,11 +25,13 @@
 
 #include <omp.h>
 
+#include "min_statistic.hpp"
+
 namespace {
 
-constexpr std::size_t kCells = 1000 * 1000;
+using avalanche::bench::min_of;
 
-double min_of(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+constexpr std::size_t kCells = 1000 * 1000;
 
 // The fields of one benchmark, shared by its OpenMP threads (each writes only its share).
 struct Fields {

@@ -25,8 +25,10 @@
 #include "avalanche/numerics/update_rows.hpp"
 #include "avalanche/physics/earth_pressure.hpp"
 #include "avalanche/physics/material.hpp"
+#include "min_statistic.hpp"
 
 using namespace avalanche;
+using avalanche::bench::min_of;
 
 namespace {
 
@@ -77,9 +79,6 @@ struct Layer {
         return in;
     }
 };
-
-// The least disturbed repetition.
-double min_of(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
 
 template <class Kernel>
 void run_per_item(benchmark::State& state, int items, Kernel&& kernel) {

@@ -63,7 +63,8 @@ void print(const RunRecord& r) {
               << ", " << r.splitting << ", " << r.threads << " thread" << (r.threads > 1 ? "s" : "")
               << "), grid " << r.nx << " x " << r.ny << "\n  wall " << r.best_wall()
               << " s (best of [" << walls.str() << "]), setup " << r.setup_seconds
-              << " s (of which sampling the DEM " << r.dem_seconds << " s)\n  simulated " << r.simulated_time << " s in " << r.steps
+              << " s (of which sampling the DEM " << r.dem_seconds << " s)\n  simulated "
+              << r.simulated_time << " s in " << r.steps
               << " steps, end: " << r.end_reason << "\n  cell updates "
               << static_cast<double>(r.cell_updates) << ", " << r.cell_updates_per_second() / 1e6
               << " M/s\n  peak memory " << r.peak_rss_bytes / 1048576.0
