@@ -220,6 +220,26 @@ std::vector<BatchCase> read_case_table(const std::string& path) {
     return cases;
 }
 
+std::vector<std::string> flags_replaced_by(const BatchCase& c, const ScenarioOverrides& flags) {
+    const std::pair<const char*, std::pair<const char*, bool>> given[] = {
+        {"delta", {"--delta", flags.delta.has_value()}},
+        {"phi", {"--phi", flags.phi.has_value()}},
+        {"density", {"--density", flags.density.has_value()}},
+        {"cfl", {"--cfl", flags.cfl.has_value()}},
+        {"t_end", {"--t-end", flags.t_end.has_value()}},
+        {"scheme", {"--scheme", flags.scheme.has_value()}},
+        {"earth_pressure", {"--earth-pressure", flags.earth_pressure.has_value()}},
+        {"rest_faces", {"--rest-faces", flags.rest_faces.has_value()}},
+        {"thickness", {"--thickness", flags.thickness.has_value()}},
+        {"volume", {"--volume", flags.volume.has_value()}},
+    };
+    std::vector<std::string> out;
+    for (const auto& [p, v] : c.values)
+        for (const auto& [name, flag] : given)
+            if (name == std::string(p->name) && flag.second) out.emplace_back(flag.first);
+    return out;
+}
+
 Scenario scenario_for_case(const Scenario& base, const BatchCase& c) {
     ScenarioOverrides o;
     for (const auto& [p, v] : c.values) {

@@ -52,6 +52,20 @@ struct Planned {
 // Prepared scenes by scene_key: material and numerics cases share the base scene.
 using SceneCache = std::map<std::string, std::shared_ptr<const PreparedScene>>;
 
+// What the scenarios are built on, as comparison.md and report.html name it: the scenario
+// file, the flags, or both ("base.toml with --delta 25").
+std::string base_description(const BatchArguments& a) {
+    const std::string flags = overrides_text(a.overrides);
+    if (!a.scenario) return flags;
+    return flags.empty() ? *a.scenario : *a.scenario + " with " + flags;
+}
+
+std::string join(const std::vector<std::string>& words) {
+    std::string out;
+    for (const auto& w : words) out += (out.empty() ? "" : ", ") + w;
+    return out;
+}
+
 std::vector<BatchCase> plan_cases(const BatchArguments& a) {
     if (a.sweeps.empty() == a.table.empty())
         throw ConfigError("--sweep", "expected --sweep NAME=VALUES (repeatable) or --table FILE");
@@ -255,11 +269,12 @@ void write_batch_outputs(const BatchArguments& args, std::vector<BatchResult>& r
                          const std::optional<Observation>& observation,
                          const GlobalOptions& global) {
     if (observation) fit_to_observation(*observation, results);
-    auto files = write_comparison(args.out, results, args.scenario, args.observed);
+    const std::string base = base_description(args);
+    auto files = write_comparison(args.out, results, base, args.observed);
     const auto maps = write_envelopes(args.out, results);
     files.insert(files.end(), maps.begin(), maps.end());
     if (observation) files.push_back(write_calibration(args.out, *observation, results));
-    for (const auto& f : write_batch_report_html(args.out, args.scenario)) files.push_back(f);
+    for (const auto& f : write_batch_report_html(args.out, base)) files.push_back(f);
     spdlog::info("wrote {} comparison file(s) into {}", files.size(), args.out);
     if (!global.quiet)
         std::cout << "comparison: " << (fs::path(args.out) / "comparison.csv").string()
@@ -274,7 +289,13 @@ int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const Glob
     Scenario base;
     ranks.all_or_none([&] {
         cases = plan_cases(args);
-        base = assemble_scenario(args.scenario, {});
+        base = assemble_scenario(args.scenario, args.overrides);
+        // Every case sets the same parameters, so the first says which flags they replace.
+        const auto replaced =
+            cases.empty() ? std::vector<std::string>{} : flags_replaced_by(cases.front(), args.overrides);
+        if (!replaced.empty() && ranks.root())
+            spdlog::warn("{} replaced in every scenario by the {}'s values", join(replaced),
+                         args.table.empty() ? "sweep" : "table");
         for (const auto& c : cases) {
             Scenario scenario = scenario_for_case(base, c);
             const nlohmann::json config = effective_config(scenario);
@@ -287,7 +308,9 @@ int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const Glob
     // Rank 0 owns DIR: the observed deposit is checked before DIR is touched, so a bad
     // --observed leaves no product behind.
     const std::string manifest_path = (fs::path(args.out) / "manifest.json").string();
-    const nlohmann::json batch = {{"base_scenario", args.scenario},
+    const nlohmann::json batch = {{"base_scenario", args.scenario ? nlohmann::json(*args.scenario)
+                                                                  : nlohmann::json(nullptr)},
+                                  {"base_flags", overrides_text(args.overrides)},
                                   {"sweeps", args.sweeps},
                                   {"table", args.table},
                                   {"observed", args.observed},

@@ -1,5 +1,6 @@
 #pragma once
 // `avalanche-hazard batch`: many scenarios from one base scenario (docs/batch.md).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,7 +9,8 @@
 namespace avalanche::detail {
 
 struct BatchArguments {
-    std::string scenario;             // base scenario file (required)
+    std::optional<std::string> scenario;  // base scenario file; or the flags below make one
+    ScenarioOverrides overrides;          // run's scenario flags: file < flags < sweep values
     std::vector<std::string> sweeps;  // "--sweep NAME=VALUES", repeatable
     std::string table;                // "--table FILE.csv" instead of sweeps
     std::string out;

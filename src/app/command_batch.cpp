@@ -10,11 +10,13 @@ Command add_batch_command(CLI::App& app, const GlobalOptions& global) {
     CLI::App* cmd = app.add_subcommand(
         "batch", "Run many scenarios (parameter sweeps or a table) and compare them");
     cmd->fallthrough();  // --quiet, --verbose, --debug may follow the subcommand
-    cmd->add_option("--scenario", args->scenario, "Base scenario file (TOML)")->required();
+    cmd->add_option_function<std::string>(
+        "--scenario", [args](const std::string& v) { args->scenario = v; },
+        "Base scenario file (TOML); or --dem and --release (with run's other scenario flags)");
     auto* sweep = cmd->add_option(
         "--sweep", args->sweeps,
         "NAME=v1,v2,... or NAME=start:stop:step (repeatable: the Cartesian product); NAME in "
-        "delta, phi, density, thickness, volume, cfl, scheme, t_end, earth_pressure");
+        "delta, phi, density, thickness, volume, cfl, scheme, t_end, earth_pressure, rest_faces");
     sweep->allow_extra_args(false);
     auto* table = cmd->add_option("--table", args->table,
                                   "CSV file: header of parameter names, one scenario per row");
@@ -28,11 +30,15 @@ Command add_batch_command(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("--observed", args->observed,
                     "Polygons of an observed deposit (any OGR format and CRS): rank the "
                     "scenarios by fit (comparison.csv, calibration.json)");
+    // The base scenario's flags, as `run` has them; a swept parameter's values win.
+    add_scenario_flags(*cmd, args->overrides);
     // clang-format off
     cmd->footer(
         "Examples:\n"
         "  avalanche-hazard batch --scenario base.toml --sweep delta=10,12.5,15,20 \\\n"
         "      --sweep phi=25:35:5 --out out/sweep\n"
+        "  avalanche-hazard batch --dem area.tif --release release.gpkg --thickness 2 \\\n"
+        "      --sweep delta=15:30:5 --out out/area\n"
         "  avalanche-hazard batch --scenario base.toml --table scenarios.csv --out out/table\n"
         "  avalanche-hazard batch --scenario base.toml --sweep delta=15:30:5 \\\n"
         "      --observed deposit.shp --out out/calibration\n"

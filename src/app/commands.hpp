@@ -21,6 +21,9 @@ struct GlobalOptions {
 };
 
 Command add_run_command(CLI::App& app, const GlobalOptions& global);
+// The scenario flags (--dem, --release, --delta, ...) of `run` and `batch`, filling `o`
+// (scenario_flags.cpp).
+void add_scenario_flags(CLI::App& cmd, ScenarioOverrides& o);
 // The bundled default scene (scenarios/demo_avakot) run like `run --scenario`.
 Command add_demo_command(CLI::App& app, const GlobalOptions& global);
 

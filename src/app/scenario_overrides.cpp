@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <filesystem>
+#include <string_view>
+#include <type_traits>
 #include <utility>
 
 #include "avalanche/app/quality_preset.hpp"
@@ -101,7 +104,65 @@ std::optional<std::string> flag_for_key(const std::string& key, const ScenarioOv
     return std::nullopt;
 }
 
+// A value as a shell would need it: single-quoted when it holds anything but
+// letters, digits and "./_-+=:,@" (a path with a space, a CRS in WKT).
+std::string shell_word(const std::string& v) {
+    const bool plain = !v.empty() && std::all_of(v.begin(), v.end(), [](unsigned char c) {
+        return std::isalnum(c) || std::string_view("./_-+=:,@").find(static_cast<char>(c)) !=
+                                      std::string_view::npos;
+    });
+    if (plain) return v;
+    std::string quoted = "'";
+    for (char c : v) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+std::string shortest_number(double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+
 }  // namespace
+
+std::string overrides_text(const ScenarioOverrides& o) {
+    std::string out;
+    const auto add = [&out](const char* flag, const std::string& value) {
+        if (!out.empty()) out += ' ';
+        out += flag;
+        if (value.empty()) return;
+        out += ' ';
+        out += shell_word(value);
+    };
+    const auto text = [&](const char* flag, const auto& v) {
+        if (!v) return;
+        if constexpr (std::is_same_v<std::decay_t<decltype(*v)>, double>)
+            add(flag, shortest_number(*v));
+        else
+            add(flag, *v);
+    };
+    for (const auto& d : o.dem) add("--dem", d);
+    text("--release", o.release);
+    text("--thickness", o.thickness);
+    text("--thickness-field", o.thickness_field);
+    text("--volume", o.volume);
+    text("--crs", o.crs);
+    text("--points", o.points);
+    text("--phi", o.phi);
+    text("--delta", o.delta);
+    text("--density", o.density);
+    text("--earth-pressure", o.earth_pressure);
+    text("--cell-size", o.cell_size);
+    text("--t-end", o.t_end);
+    text("--stop-ke-fraction", o.stop_ke_fraction);
+    text("--cfl", o.cfl);
+    text("--scheme", o.scheme);
+    text("--limiter", o.limiter);
+    text("--output-interval", o.output_interval);
+    if (o.rest_faces) add(*o.rest_faces ? "--rest-faces" : "--no-rest-faces", "");
+    text("--quality", o.quality);
+    return out;
+}
 
 std::optional<bool> parse_switch(const std::string& value) {
     if (value == "true") return true;

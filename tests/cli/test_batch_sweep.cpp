@@ -94,6 +94,31 @@ TEST(BatchSweep, RestFacesTakesTrueOrFalseOverTheBase) {
     }
 }
 
+TEST(BatchSweep, TheCasesValuesWinOverTheFlagsTheyReplace) {
+    const auto cases = cartesian_product({parse_sweep("delta=20,25"), parse_sweep("thickness=1,2")});
+    ScenarioOverrides flags;
+    EXPECT_TRUE(flags_replaced_by(cases[0], flags).empty());
+    flags.phi = 30.0;
+    flags.volume = 1e4;
+    flags.delta = 22.0;
+    EXPECT_EQ(flags_replaced_by(cases[0], flags), (std::vector<std::string>{"--delta"}));
+    flags.thickness = 3.0;
+    EXPECT_EQ(flags_replaced_by(cases[0], flags),
+              (std::vector<std::string>{"--delta", "--thickness"}));
+
+    // The base scenario of the flags; the case's delta over the flag's.
+    test::ScratchDir dir("batch-replaced");
+    ScenarioOverrides chute_flags;
+    chute_flags.delta = 22.0;
+    chute_flags.phi = 30.0;
+    const Scenario base =
+        assemble_scenario(dir.write("base.toml", test::kCoarseParametricChute), chute_flags);
+    EXPECT_EQ(base.material.delta_deg, 22.0);
+    const auto deltas = cartesian_product({parse_sweep("delta=20,25")});
+    EXPECT_EQ(scenario_for_case(base, deltas[1]).material.delta_deg, 25.0);
+    EXPECT_EQ(scenario_for_case(base, deltas[1]).material.phi_deg, 30.0);
+}
+
 TEST(BatchSweep, CommandRefusesBadSweepsWithExitTwoAndWritesNothing) {
     test::ScratchDir dir("batch-refuse");
     const auto base = dir.write("base.toml", test::kCoarseParametricChute);

@@ -107,5 +107,25 @@ TEST(ScenarioOverrides, DemAndReleaseFlagsMakeADemScenario) {
         0u);
 }
 
+TEST(ScenarioOverrides, TextNamesTheFlagsAsACommandLineGivesThem) {
+    EXPECT_EQ(overrides_text(ScenarioOverrides{}), "");
+    ScenarioOverrides o;
+    o.dem = {"a.tif", "my tiles/b.tif"};
+    o.release = "it's.gpkg";
+    o.thickness = 1.5;
+    o.delta = 25.0;
+    o.cfl = 0.1;
+    o.quality = "draft";
+    o.rest_faces = false;
+    // In --help's order; a value a shell would split or unquote in single quotes.
+    EXPECT_EQ(overrides_text(o),
+              "--dem a.tif --dem 'my tiles/b.tif' --release 'it'\\''s.gpkg' --thickness 1.5 "
+              "--delta 25 --cfl 0.1 --no-rest-faces --quality draft");
+    o = {};
+    o.rest_faces = true;
+    o.crs = "EPSG:32633";
+    EXPECT_EQ(overrides_text(o), "--crs EPSG:32633 --rest-faces");
+}
+
 }  // namespace
 }  // namespace avalanche

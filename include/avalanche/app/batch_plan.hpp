@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "avalanche/app/scenario_overrides.hpp"
 #include "avalanche/io/scenario.hpp"
 
 namespace avalanche {
@@ -55,6 +56,11 @@ std::vector<BatchCase> read_case_table(const std::string& path);
 // The id of a case from its values ("delta=12.5_phi=30"); characters outside
 // [A-Za-z0-9._=+-] become '_'.
 std::string case_id(const std::vector<std::pair<const SweepParameter*, std::string>>& values);
+
+// The scenario flags of the batch's command line (--delta, --thickness, ...) whose
+// parameters the case's values set again, by their flag names: the sweep or table wins
+// (defaults < scenario file < flags < the case's values), and the batch says so.
+std::vector<std::string> flags_replaced_by(const BatchCase& c, const ScenarioOverrides& flags);
 
 // The base scenario with the case's values applied and validated. ConfigError names the
 // case ("scenario delta=40: material.delta_deg: ...") so the user finds the bad value.

@@ -38,6 +38,11 @@ struct ScenarioOverrides {
 std::optional<bool> parse_switch(const std::string& value);
 std::string not_a_switch(const std::string& value);  // expected true or false, got "value"
 
+// The flags as a command line would give them, in the order of --help ("--dem a.tif
+// --release r.gpkg --thickness 2"; a value with a space or a quote single-quoted): what a
+// batch built on flags names as its base. Empty when no flag is set.
+std::string overrides_text(const ScenarioOverrides& o);
+
 // Applies the flags; throws ConfigError naming the flag for a bad choice or a flag that
 // does not fit the scenario (e.g. --thickness on a cap).
 void apply_overrides(Scenario& s, const ScenarioOverrides& o);
