@@ -20,6 +20,7 @@
 #include "avalanche/app/prepared_scene.hpp"
 #include "avalanche/app/report_html.hpp"
 #include "avalanche/app/scenario_overrides.hpp"
+#include "avalanche/app/shared_scene_products.hpp"
 #include "avalanche/core/error.hpp"
 #include "avalanche/io/effective_config.hpp"
 #include "batch_calibration.hpp"
@@ -191,6 +192,11 @@ std::vector<Failure> run_pending(const std::vector<Planned*>& pending, Manifest&
     const int omp_threads = std::max(1, budget / workers);
     spdlog::info("running {} scenario(s), {} at a time, {} OpenMP thread(s) each", pending.size(),
                  workers, omp_threads);
+    // What the scenarios of one scene share in their products, made before the workers
+    // start so that none of them inserts into the map.
+    std::map<const PreparedScene*, std::unique_ptr<SharedSceneProducts>> shared;
+    for (const Planned* p : pending)
+        if (!shared[p->scene.get()]) shared[p->scene.get()] = std::make_unique<SharedSceneProducts>();
     std::mutex mutex;
     std::size_t finished = 0;
     std::vector<Failure> failures;
@@ -208,6 +214,7 @@ std::vector<Failure> run_pending(const std::vector<Planned*>& pending, Manifest&
             prepare_output_folder(p.dir, false);
             RunOptions options{p.dir, global.command_line,
                                [](double) { return !InterruptGuard::requested(); }};
+            options.shared_products = shared.at(p.scene.get()).get();
             const RunOutcome outcome = execute_scene(*p.scene, p.scenario, options);
             const std::lock_guard lock(mutex);
             const bool done = outcome.stats.end_reason != EndReason::interrupted;

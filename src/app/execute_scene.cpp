@@ -254,7 +254,8 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
                                  runout,
                                  caveats,
                                  hash,
-                                 options.command_line};
+                                 options.command_line,
+                                 options.shared_products};
     const std::vector<std::string> files = write_products(options.out_dir, products);
     phases.lap("products");
     write_report(options.out_dir, products, files);

@@ -59,7 +59,12 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     // One hillshade under every quick-look, already per pixel as they draw it: the cells'
     // hillshade and the elevation's copy are freed here (each is a grid-sized array of
     // first-touched memory on a large grid; dem.tif makes its own copy when written).
-    const gis::QuicklookShade shade = gis::quicklook_shade(g, gis::hillshade(g, in.scene.terrain.elevation.interior()));
+    // A batch's scenarios of one scene share it.
+    const auto make_shade = [&] {
+        return gis::quicklook_shade(g, gis::hillshade(g, in.scene.terrain.elevation.interior()));
+    };
+    const gis::QuicklookShade own_shade = in.shared ? gis::QuicklookShade{} : make_shade();
+    const gis::QuicklookShade& shade = in.shared ? in.shared->shade(make_shade) : own_shade;
 
     const std::string pressure_breaks = "classes: low < " + std::to_string(out.pressure_low_kpa) +
                                         " kPa <= medium < " + std::to_string(out.pressure_high_kpa) +
@@ -136,8 +141,15 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
         // Appended, not assigned from a literal: GCC 12's -Wrestrict misreads the
         // inlined literal assignment here (a false positive).
         dem_band.units.push_back('m');
-        gis::write_geotiff((d / "dem.tif").string(), geo, in.scene.terrain.elevation.interior(), dem_band,
-                           gis::SampleType::float32);
+        const auto write = [&] {
+            gis::write_geotiff((d / "dem.tif").string(), geo, in.scene.terrain.elevation.interior(),
+                               dem_band, gis::SampleType::float32);
+        };
+        // A batch's scenarios of one scene link the first one's file.
+        if (in.shared)
+            in.shared->dem(d / "dem.tif", write);
+        else
+            write();
         return {"dem.tif"};
     };
     // The six maps and the DEM are independent files (GDAL only): written by as many

@@ -22,6 +22,8 @@
 
 namespace avalanche {
 
+class SharedSceneProducts;  // shared_scene_products.hpp
+
 struct PreparedScene {
     Grid grid;
     TerrainFields terrain;
@@ -72,6 +74,9 @@ struct RunOptions {
     // Wall time the caller spent preparing the scene (prepare_scene), reported as the
     // run's "prepare" phase; negative: not this run's (batch runs share one scene).
     double prepare_seconds = -1.0;
+    // What the scenarios of this scene share in their products (batch: the quick-looks'
+    // shade, dem.tif); null for a run alone.
+    SharedSceneProducts* shared_products = nullptr;
 };
 
 struct RunOutcome {

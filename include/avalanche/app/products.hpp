@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "avalanche/app/prepared_scene.hpp"
+#include "avalanche/app/shared_scene_products.hpp"
 #include "avalanche/core/simulation.hpp"
 #include "avalanche/output/hazard_maps.hpp"
 #include "avalanche/output/monitoring.hpp"
@@ -29,6 +30,8 @@ struct ProductInputs {
     const std::vector<RunCaveat>& caveats;
     std::string config_hash;
     std::string command_line;
+    // The products this scene's other scenarios share (batch); null: made here alone.
+    SharedSceneProducts* shared = nullptr;
 };
 
 // Writes every product; returns the file names written (relative to dir).
