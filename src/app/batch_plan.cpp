@@ -28,6 +28,7 @@ constexpr SweepParameter kParameters[] = {
     {"cfl", "cfl", true, false},
     {"t_end", "t_end", true, false},
     {"scheme", "scheme", false, false},
+    {"limiter", "limiter", false, false},
     {"earth_pressure", "earth_pressure", false, false},
     {"rest_faces", "rest_faces", false, false},
     {"thickness", "thickness", true, true},
@@ -120,6 +121,11 @@ const SweepParameter& find_sweep_parameter(const std::string& name, const std::s
         throw ConfigError(where,
                           "cell_size cannot be swept: it changes the grid, and the batch compares "
                           "maps cell by cell; run one batch per cell size");
+    if (name == "quality")
+        throw ConfigError(where,
+                          "quality cannot be swept: its presets change the cell size, and the batch "
+                          "compares maps cell by cell; run one batch per preset (--quality), or "
+                          "sweep scheme, limiter and cfl");
     throw ConfigError(where, "unknown parameter \"" + name + "\"; expected one of " + join_names());
 }
 
@@ -228,6 +234,7 @@ std::vector<std::string> flags_replaced_by(const BatchCase& c, const ScenarioOve
         {"cfl", {"--cfl", flags.cfl.has_value()}},
         {"t_end", {"--t-end", flags.t_end.has_value()}},
         {"scheme", {"--scheme", flags.scheme.has_value()}},
+        {"limiter", {"--limiter", flags.limiter.has_value()}},
         {"earth_pressure", {"--earth-pressure", flags.earth_pressure.has_value()}},
         {"rest_faces", {"--rest-faces", flags.rest_faces.has_value()}},
         {"thickness", {"--thickness", flags.thickness.has_value()}},
@@ -257,6 +264,8 @@ Scenario scenario_for_case(const Scenario& base, const BatchCase& c) {
             o.t_end = x;
         else if (name == "scheme")
             o.scheme = v;
+        else if (name == "limiter")
+            o.limiter = v;
         else if (name == "earth_pressure")
             o.earth_pressure = v;
         else if (name == "thickness")

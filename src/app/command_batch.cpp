@@ -16,7 +16,8 @@ Command add_batch_command(CLI::App& app, const GlobalOptions& global) {
     auto* sweep = cmd->add_option(
         "--sweep", args->sweeps,
         "NAME=v1,v2,... or NAME=start:stop:step (repeatable: the Cartesian product); NAME in "
-        "delta, phi, density, thickness, volume, cfl, scheme, t_end, earth_pressure, rest_faces");
+        "delta, phi, density, thickness, volume, cfl, scheme, limiter, t_end, earth_pressure, "
+        "rest_faces");
     sweep->allow_extra_args(false);
     auto* table = cmd->add_option("--table", args->table,
                                   "CSV file: header of parameter names, one scenario per row");

@@ -41,12 +41,14 @@ TEST(BatchSweep, RangesIncludeTheStopDespiteRoundOff) {
 TEST(BatchSweep, BadSyntaxAndUnknownParametersNameTheSweep) {
     for (const char* bad :
          {"delta", "delta=", "=5", "delta=1:2", "delta=a,b", "delta=5:1:1", "delta=1:5:0",
-          "delta=1,,2", "scheme=1:2:1", "delta=10,10.0", "friction=10", "cell_size=0.5"}) {
+          "delta=1,,2", "scheme=1:2:1", "limiter=1:2:1", "delta=10,10.0", "friction=10",
+          "cell_size=0.5", "quality=draft,fine"}) {
         const std::string message = config_error_of(bad);
         EXPECT_NE(message.find(std::string("--sweep ") + bad), std::string::npos)
             << bad << " -> " << message;
     }
     EXPECT_NE(config_error_of("cell_size=0.5").find("grid"), std::string::npos);
+    EXPECT_NE(config_error_of("quality=draft,fine").find("change the cell size"), std::string::npos);
 }
 
 TEST(BatchSweep, CartesianProductHasFilesystemSafeIds) {
@@ -91,6 +93,29 @@ TEST(BatchSweep, RestFacesTakesTrueOrFalseOverTheBase) {
     } catch (const ConfigError& e) {
         EXPECT_EQ(std::string(e.what()),
                   "scenario rest_faces=yes: rest_faces: expected true or false, got \"yes\"");
+    }
+}
+
+TEST(BatchSweep, LimiterTakesTheWafLimitersOverTheBase) {
+    test::ScratchDir dir("batch-limiter");
+    const Scenario base = assemble_scenario(dir.write("base.toml", test::kCoarseParametricChute), {});
+    ASSERT_EQ(base.numerics.limiter, Limiter::van_leer);
+    const auto cases = cartesian_product({parse_sweep("limiter=superbee,minmod")});
+    ASSERT_EQ(cases.size(), 2u);
+    EXPECT_EQ(cases[0].id, "limiter=superbee");
+    EXPECT_EQ(scenario_for_case(base, cases[0]).numerics.limiter, Limiter::superbee);
+    EXPECT_EQ(scenario_for_case(base, cases[1]).numerics.limiter, Limiter::minmod);
+    EXPECT_EQ(scene_key(cases[0]), "");  // numerics only: the base scene is shared
+    ScenarioOverrides flags;
+    flags.limiter = "van_albada";
+    EXPECT_EQ(flags_replaced_by(cases[0], flags), (std::vector<std::string>{"--limiter"}));
+    const auto bad = cartesian_product({parse_sweep("limiter=fast")});
+    try {
+        scenario_for_case(base, bad[0]);
+        ADD_FAILURE() << "limiter=fast accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("scenario limiter=fast: --limiter: expected", 0), 0u)
+            << e.what();
     }
 }
 
