@@ -22,17 +22,17 @@ namespace {
 // initial state, hence their own preparation. cell_size is absent on purpose: it
 // changes the grid, and maps on different grids cannot be compared cell by cell.
 constexpr SweepParameter kParameters[] = {
-    {"delta", "delta_deg", true, false},
-    {"phi", "phi_deg", true, false},
-    {"density", "density", true, false},
-    {"cfl", "cfl", true, false},
-    {"t_end", "t_end", true, false},
-    {"scheme", "scheme", false, false},
-    {"limiter", "limiter", false, false},
-    {"earth_pressure", "earth_pressure", false, false},
-    {"rest_faces", "rest_faces", false, false},
-    {"thickness", "thickness", true, true},
-    {"volume", "volume", true, true},
+    {"delta", "delta_deg", "material.delta_deg", true, false},
+    {"phi", "phi_deg", "material.phi_deg", true, false},
+    {"density", "density", "material.density", true, false},
+    {"cfl", "cfl", "numerics.cfl", true, false},
+    {"t_end", "t_end", "numerics.t_end", true, false},
+    {"scheme", "scheme", "numerics.scheme", false, false},
+    {"limiter", "limiter", "numerics.limiter", false, false},
+    {"earth_pressure", "earth_pressure", "material.earth_pressure", false, false},
+    {"rest_faces", "rest_faces", "numerics.rest_faces", false, false},
+    {"thickness", "thickness", "release.thickness", true, true},
+    {"volume", "volume", "release.volume", true, true},
 };
 
 // A range larger than this is almost certainly a typo in the step.
@@ -227,23 +227,9 @@ std::vector<BatchCase> read_case_table(const std::string& path) {
 }
 
 std::vector<std::string> flags_replaced_by(const BatchCase& c, const ScenarioOverrides& flags) {
-    const std::pair<const char*, std::pair<const char*, bool>> given[] = {
-        {"delta", {"--delta", flags.delta.has_value()}},
-        {"phi", {"--phi", flags.phi.has_value()}},
-        {"density", {"--density", flags.density.has_value()}},
-        {"cfl", {"--cfl", flags.cfl.has_value()}},
-        {"t_end", {"--t-end", flags.t_end.has_value()}},
-        {"scheme", {"--scheme", flags.scheme.has_value()}},
-        {"limiter", {"--limiter", flags.limiter.has_value()}},
-        {"earth_pressure", {"--earth-pressure", flags.earth_pressure.has_value()}},
-        {"rest_faces", {"--rest-faces", flags.rest_faces.has_value()}},
-        {"thickness", {"--thickness", flags.thickness.has_value()}},
-        {"volume", {"--volume", flags.volume.has_value()}},
-    };
     std::vector<std::string> out;
     for (const auto& [p, v] : c.values)
-        for (const auto& [name, flag] : given)
-            if (name == std::string(p->name) && flag.second) out.emplace_back(flag.first);
+        if (auto flag = flag_for_key(p->key, flags)) out.push_back(*flag);
     return out;
 }
 

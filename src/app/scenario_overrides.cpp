@@ -78,7 +78,8 @@ void apply_quality(Scenario& s, Quality q) {
         s.cell_size_factor = p.cell_size_factor;
 }
 
-// The flag that set a scenario key in this run, if any.
+}  // namespace
+
 std::optional<std::string> flag_for_key(const std::string& key, const ScenarioOverrides& o) {
     const std::pair<const char*, std::pair<const char*, bool>> table[] = {
         {"terrain.dem", {"--dem", !o.dem.empty()}},
@@ -92,17 +93,23 @@ std::optional<std::string> flag_for_key(const std::string& key, const ScenarioOv
         {"material.phi_deg", {"--phi", o.phi.has_value()}},
         {"material.delta_deg", {"--delta", o.delta.has_value()}},
         {"material.density", {"--density", o.density.has_value()}},
+        {"material.earth_pressure", {"--earth-pressure", o.earth_pressure.has_value()}},
         {"numerics.cell_size", {"--cell-size", o.cell_size.has_value()}},
         {"numerics.cell_size", {"--quality", o.quality.has_value()}},
         {"numerics.t_end", {"--t-end", o.t_end.has_value()}},
         {"numerics.stop_ke_fraction", {"--stop-ke-fraction", o.stop_ke_fraction.has_value()}},
         {"numerics.cfl", {"--cfl", o.cfl.has_value()}},
+        {"numerics.scheme", {"--scheme", o.scheme.has_value()}},
+        {"numerics.limiter", {"--limiter", o.limiter.has_value()}},
         {"numerics.output_interval", {"--output-interval", o.output_interval.has_value()}},
+        {"numerics.rest_faces", {"--rest-faces", o.rest_faces.has_value()}},
     };
     for (const auto& [k, flag] : table)
         if (key == k && flag.second) return std::string(flag.first);
     return std::nullopt;
 }
+
+namespace {
 
 // A value as a shell would need it: single-quoted when it holds anything but
 // letters, digits and "./_-+=:,@" (a path with a space, a CRS in WKT).

@@ -18,6 +18,7 @@ namespace avalanche {
 struct SweepParameter {
     const char* name;    // as in --sweep: "delta"
     const char* column;  // "delta_deg"
+    const char* key;     // the scenario key: "material.delta_deg" (flag_for_key)
     bool numeric;        // false: a choice (scheme, earth_pressure, rest_faces), lists only
     bool changes_scene;
 };

@@ -38,6 +38,11 @@ struct ScenarioOverrides {
 std::optional<bool> parse_switch(const std::string& value);
 std::string not_a_switch(const std::string& value);  // expected true or false, got "value"
 
+// The flag that set scenario key `key` ("material.delta_deg" -> "--delta") in `o`, if
+// one did: what a validation error of that key names, and the flag a batch's sweep of
+// that key replaces.
+std::optional<std::string> flag_for_key(const std::string& key, const ScenarioOverrides& o);
+
 // The flags as a command line would give them, in the order of --help ("--dem a.tif
 // --release r.gpkg --thickness 2"; a value with a space or a quote single-quoted): what a
 // batch built on flags names as its base. Empty when no flag is set.
