@@ -661,7 +661,7 @@ void Stepper::advect(State& s, double tau) {
                 first[static_cast<std::size_t>(q)] =
                     all_strips_to_first_thread_ ? all_first : share_start(cells_before, q, n);
             }
-            claims.reset(first);
+            claims.reset(first, all_strips_to_first_thread_);  // the others claim first
         }
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
         // The columns the stages read of the bounds: the per-cell stage's, with a

@@ -2,15 +2,24 @@
 
 namespace avalanche {
 
-void StripClaims::reset(std::span<const int> first) {
+void StripClaims::reset(std::span<const int> first, bool first_waits) {
     const std::lock_guard lock(mutex_);
     shares_.clear();
     for (std::size_t t = 0; t + 1 < first.size(); ++t) shares_.push_back({first[t], first[t + 1], true});
+    has_claimed_.assign(shares_.size(), 0);
+    claimed_ = 0;
+    first_waits_ = first_waits;
     steals_ = 0;
 }
 
 StripClaims::Claim StripClaims::next(int t) {
-    const std::lock_guard lock(mutex_);
+    std::unique_lock lock(mutex_);
+    const auto others = static_cast<int>(shares_.size()) - 1;
+    if (!has_claimed_[static_cast<std::size_t>(t)]) {
+        has_claimed_[static_cast<std::size_t>(t)] = 1;
+        if (t != 0 && ++claimed_ == others && first_waits_) others_claimed_.notify_one();
+        if (t == 0 && first_waits_) others_claimed_.wait(lock, [&] { return claimed_ == others; });
+    }
     Share& own = shares_[static_cast<std::size_t>(t)];
     if (own.next >= own.end) {
         // Steal: the upper half (rounded up) of the strips of the thread with the most

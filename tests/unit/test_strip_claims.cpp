@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <thread>
 #include <vector>
@@ -69,6 +70,34 @@ TEST(StripClaims, OneStripBeyondTheNextIsTakenTheNextIsNot) {
     EXPECT_EQ(c.next(1).strip, -1);  // 1 was thread 0's next: nothing beyond it
     EXPECT_EQ(c.next(0).strip, -1);
     EXPECT_EQ(c.steals(), 1);
+}
+
+// With first_waits (the tests' all-strips-to-the-first-thread runs), thread 0's first
+// claim waits for every other thread's: here thread 1 takes half of thread 0's share
+// before thread 0 claims a strip, however the two are scheduled.
+TEST(StripClaims, TheFirstThreadWaitsForTheOthersFirstClaims) {
+    StripClaims c;
+    c.reset(std::vector<int>{0, 10, 10, 10}, true);  // every strip to thread 0
+    std::atomic<bool> returned{false};
+    StripClaims::Claim first_of_0;
+    std::thread zero([&] {
+        first_of_0 = c.next(0);
+        returned = true;
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_FALSE(returned);  // two threads have not claimed yet
+    EXPECT_TRUE((Seen{5, true, false} == c.next(1)));  // half of 1 .. 9 beyond 0
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_FALSE(returned);  // thread 2 has not
+    // Thread 0 has 1 .. 4 beyond its next, thread 1 has 7 .. 9: thread 2 takes 3, 4.
+    EXPECT_TRUE((Seen{3, true, false} == c.next(2)));
+    zero.join();
+    EXPECT_TRUE((Seen{0, true, false} == first_of_0));
+    EXPECT_EQ(c.steals(), 2);
+    // Without it, thread 0 claims at once.
+    c.reset(std::vector<int>{0, 10, 10, 10});
+    EXPECT_TRUE((Seen{0, true, false} == c.next(0)));
+    EXPECT_EQ(c.steals(), 0);
 }
 
 // Threads claiming at once: every strip is claimed exactly once; each thread's claims

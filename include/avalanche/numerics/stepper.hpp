@@ -95,8 +95,9 @@ class Stepper {
     void set_whole_box_advection(bool whole) { whole_box_advection_ = whole; }
     // Shares of strips the advection's threads took from one another (StripClaims), over
     // every advection so far; and a switch that gives every strip to the first thread
-    // at the start of each advection, so that the others begin by taking from it: for
-    // the tests that compare those runs to one thread's, to the bit.
+    // at the start of each advection and has it wait until the others have claimed, so
+    // that they begin by taking from it whatever the machine's load: for the tests that
+    // compare those runs to one thread's, to the bit.
     [[nodiscard]] std::uint64_t strip_steals() const { return strip_steals_; }
     void set_all_strips_to_first_thread(bool all) { all_strips_to_first_thread_ = all; }
 

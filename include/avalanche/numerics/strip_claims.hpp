@@ -15,6 +15,13 @@
 // share. The strip after the one a thread claims is therefore reserved to it: a thief
 // takes only the strips beyond, so a claimed strip that does not end the share is
 // followed by the same thread's next strip, whatever is stolen later.
+//
+// For the tests that compare shares taken from another thread with one thread's run
+// (Stepper::set_all_strips_to_first_thread), reset() can make thread 0 wait until every
+// other thread has made its first claim: the others then begin by taking from it
+// whatever the machine's load. Left to the scheduler, a loaded 2-core machine once
+// ran 400 advections in which thread 0 did all its strips before thread 1 claimed one.
+#include <condition_variable>
 #include <mutex>
 #include <span>
 #include <vector>
@@ -30,7 +37,9 @@ class StripClaims {
     };
 
     // Thread t's share is [first[t], first[t + 1]); first.back() is the number of strips.
-    void reset(std::span<const int> first);
+    // With first_waits, thread 0's first next() returns only once every other thread
+    // has called next() (each thread must call it, as the advection's do).
+    void reset(std::span<const int> first, bool first_waits = false);
     // The next strip for thread t (safe to call from every thread at once).
     [[nodiscard]] Claim next(int t);
     // Shares taken from another thread since the last reset.
@@ -42,7 +51,11 @@ class StripClaims {
         bool fresh = true;  // nothing claimed from it yet
     };
     mutable std::mutex mutex_;
+    std::condition_variable others_claimed_;
     std::vector<Share> shares_;
+    std::vector<char> has_claimed_;  // per thread: next() called since the reset
+    int claimed_ = 0;                 // threads other than 0 that have called next()
+    bool first_waits_ = false;
     int steals_ = 0;
 };
 
