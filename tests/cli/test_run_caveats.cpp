@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <regex>
 
 #include "avalanche/gis/raster_reader.hpp"
 #include "batch_test_support.hpp"
