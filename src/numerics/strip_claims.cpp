@@ -6,7 +6,7 @@ void StripClaims::reset(std::span<const int> first, bool first_waits) {
     const std::lock_guard lock(mutex_);
     shares_.clear();
     for (std::size_t t = 0; t + 1 < first.size(); ++t) shares_.push_back({first[t], first[t + 1], true});
-    has_claimed_.assign(shares_.size(), 0);
+    has_claimed_.assign(first_waits ? shares_.size() : 0, 0);  // read only with first_waits
     claimed_ = 0;
     first_waits_ = first_waits;
     steals_ = 0;
@@ -14,11 +14,14 @@ void StripClaims::reset(std::span<const int> first, bool first_waits) {
 
 StripClaims::Claim StripClaims::next(int t) {
     std::unique_lock lock(mutex_);
-    const auto others = static_cast<int>(shares_.size()) - 1;
-    if (!has_claimed_[static_cast<std::size_t>(t)]) {
+    if (first_waits_ && !has_claimed_[static_cast<std::size_t>(t)]) {
         has_claimed_[static_cast<std::size_t>(t)] = 1;
-        if (t != 0 && ++claimed_ == others && first_waits_) others_claimed_.notify_one();
-        if (t == 0 && first_waits_) others_claimed_.wait(lock, [&] { return claimed_ == others; });
+        const auto others = static_cast<int>(shares_.size()) - 1;
+        if (t != 0) {
+            if (++claimed_ == others) others_claimed_.notify_one();
+        } else {
+            others_claimed_.wait(lock, [&] { return claimed_ == others; });
+        }
     }
     Share& own = shares_[static_cast<std::size_t>(t)];
     if (own.next >= own.end) {

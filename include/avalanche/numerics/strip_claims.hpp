@@ -53,8 +53,10 @@ class StripClaims {
     mutable std::mutex mutex_;
     std::condition_variable others_claimed_;
     std::vector<Share> shares_;
-    std::vector<char> has_claimed_;  // per thread: next() called since the reset
-    int claimed_ = 0;                 // threads other than 0 that have called next()
+    // With first_waits_ only: per thread, next() called since the reset; and how many
+    // threads other than 0 have called it.
+    std::vector<char> has_claimed_;
+    int claimed_ = 0;
     bool first_waits_ = false;
     int steals_ = 0;
 };
