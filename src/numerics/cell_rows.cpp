@@ -158,8 +158,11 @@ constexpr int kScanLanes = 8;  // fixed, not the vector width: the sum's bits do
 // Whether the time loop's scan rejects a cell: a non-finite value or a negative depth.
 AVALANCHE_INLINE bool bad_cell(double h, double hu, double hv) {
     constexpr double kMax = std::numeric_limits<double>::max();
-    // Ordered comparisons: false for NaN, so a NaN anywhere makes the cell bad.
-    const bool ok = (h >= 0.0) & (h <= kMax) & (std::abs(hu) <= kMax) & (std::abs(hv) <= kMax);
+    // Ordered comparisons: false for NaN, so a NaN anywhere makes the cell bad. Bitwise
+    // '&' on purpose (no branches in the vector loop); the magnitudes first, so that no
+    // operand is a call (clang's -Wbitwise-instead-of-logical).
+    const double abs_hu = std::abs(hu), abs_hv = std::abs(hv);
+    const bool ok = (h >= 0.0) & (h <= kMax) & (abs_hu <= kMax) & (abs_hv <= kMax);
     return !ok;
 }
 
