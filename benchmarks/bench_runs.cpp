@@ -168,6 +168,7 @@ RunRecord timed_case(const std::string& case_id, Build build, long step_limit, c
     r.threads = omp_get_max_threads();
 #endif
     r.load_average = load_average_1min();
+    r.start_rss_bytes = resident_bytes();
     for (int k = 0; k < opt.repeat; ++k) {
         const auto t0 = Clock::now();
         Scene s = build();

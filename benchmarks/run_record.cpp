@@ -1,6 +1,7 @@
 #include "run_record.hpp"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <ctime>
@@ -26,6 +27,18 @@ double RunRecord::cell_updates_per_second() const {
 double RunRecord::bytes_per_cell() const {
     const double cells = static_cast<double>(nx) * ny;
     return cells > 0.0 ? peak_rss_bytes / cells : 0.0;
+}
+
+double RunRecord::scene_bytes_per_cell() const {
+    const double cells = static_cast<double>(nx) * ny;
+    return cells > 0.0 ? (peak_rss_bytes - start_rss_bytes) / cells : 0.0;
+}
+
+double resident_bytes() {
+    std::ifstream statm("/proc/self/statm");
+    double size_pages = 0.0, resident_pages = 0.0;
+    if (!(statm >> size_pages >> resident_pages)) return 0.0;
+    return resident_pages * static_cast<double>(sysconf(_SC_PAGESIZE));
 }
 
 double peak_rss_bytes() {
@@ -68,7 +81,9 @@ void print(const RunRecord& r) {
               << " steps, end: " << r.end_reason << "\n  cell updates "
               << static_cast<double>(r.cell_updates) << ", " << r.cell_updates_per_second() / 1e6
               << " M/s\n  peak memory " << r.peak_rss_bytes / 1048576.0
-              << " MiB = " << r.bytes_per_cell() << " B/cell, mass error " << r.relative_mass_error
+              << " MiB = " << r.bytes_per_cell() << " B/cell (" << r.scene_bytes_per_cell()
+              << " B/cell above the " << r.start_rss_bytes / 1048576.0
+              << " MiB resident before the scene), mass error " << r.relative_mass_error
               << ", outflow " << r.outflow_volume << " m^3\n  cpu / wall of the best run "
               << cpu_per_wall(r) << " (threads " << r.threads << "), load average before "
               << r.load_average << "\n";
@@ -107,6 +122,8 @@ void append_json(const RunRecord& r, const std::string& path) {
       << ", \"cell_updates_per_second\": " << r.cell_updates_per_second()
       << ", \"peak_rss_bytes\": " << r.peak_rss_bytes
       << ", \"bytes_per_cell\": " << r.bytes_per_cell()
+      << ", \"start_rss_bytes\": " << r.start_rss_bytes
+      << ", \"scene_bytes_per_cell\": " << r.scene_bytes_per_cell()
       << ", \"end_reason\": " << quoted(r.end_reason)
       << ", \"relative_mass_error\": " << r.relative_mass_error
       << ", \"outflow_volume\": " << r.outflow_volume << ", \"note\": " << quoted(r.note) << "}\n";

@@ -30,15 +30,22 @@ struct RunRecord {
     double relative_mass_error = 0.0;
     double outflow_volume = 0.0;  // m^3 through open edges (case d: must be 0 on the crop)
     double peak_rss_bytes = 0.0;  // getrusage ru_maxrss of this process (one case per process)
+    // The resident set of the case's process before its first scene is built: the
+    // program, its libraries and runtime, which a small grid's bytes per cell would
+    // otherwise carry (case (b): about 6 MB of its 11-13).
+    double start_rss_bytes = 0.0;
     std::string note;             // e.g. the ratio of case (d)
 
     [[nodiscard]] double best_wall() const;
     [[nodiscard]] double cell_updates_per_second() const;  // with the best wall time
     [[nodiscard]] double bytes_per_cell() const;           // peak RSS / grid cells
+    [[nodiscard]] double scene_bytes_per_cell() const;     // (peak - start RSS) / grid cells
 };
 
 // Peak resident set of the calling process (bytes).
 double peak_rss_bytes();
+// Resident set of the calling process now (bytes; /proc/self/statm), 0 where unknown.
+double resident_bytes();
 // CPU time of the calling process, all threads (s).
 double process_cpu_seconds();
 // The system's 1-minute load average, or -1 where it cannot be read.
