@@ -18,6 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
@@ -37,6 +38,7 @@
 #include "avalanche/io/enum_names.hpp"
 #include "bench_scenes.hpp"
 #include "run_record.hpp"
+#include "support/resident_memory.hpp"
 
 using namespace avalanche;
 using namespace avalanche::bench;
@@ -168,7 +170,7 @@ RunRecord timed_case(const std::string& case_id, Build build, long step_limit, c
     r.threads = omp_get_max_threads();
 #endif
     r.load_average = load_average_1min();
-    r.start_rss_bytes = resident_bytes();
+    r.start_rss_bytes = static_cast<double>(std::max(0LL, test::resident_bytes()));
     for (int k = 0; k < opt.repeat; ++k) {
         const auto t0 = Clock::now();
         Scene s = build();

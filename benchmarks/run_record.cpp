@@ -1,7 +1,6 @@
 #include "run_record.hpp"
 
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <ctime>
@@ -32,13 +31,6 @@ double RunRecord::bytes_per_cell() const {
 double RunRecord::scene_bytes_per_cell() const {
     const double cells = static_cast<double>(nx) * ny;
     return cells > 0.0 ? (peak_rss_bytes - start_rss_bytes) / cells : 0.0;
-}
-
-double resident_bytes() {
-    std::ifstream statm("/proc/self/statm");
-    double size_pages = 0.0, resident_pages = 0.0;
-    if (!(statm >> size_pages >> resident_pages)) return 0.0;
-    return resident_pages * static_cast<double>(sysconf(_SC_PAGESIZE));
 }
 
 double peak_rss_bytes() {

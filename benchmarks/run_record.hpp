@@ -30,9 +30,9 @@ struct RunRecord {
     double relative_mass_error = 0.0;
     double outflow_volume = 0.0;  // m^3 through open edges (case d: must be 0 on the crop)
     double peak_rss_bytes = 0.0;  // getrusage ru_maxrss of this process (one case per process)
-    // The resident set of the case's process before its first scene is built: the
-    // program, its libraries and runtime, which a small grid's bytes per cell would
-    // otherwise carry (case (b): about 6 MB of its 11-13).
+    // The resident set of the case's process before its first scene is built (0 where
+    // unknown): the program, its libraries and runtime, which a small grid's bytes per
+    // cell would otherwise carry (1.6 MB on the project machine; case (b) peaks at 11-14).
     double start_rss_bytes = 0.0;
     std::string note;             // e.g. the ratio of case (d)
 
@@ -44,8 +44,6 @@ struct RunRecord {
 
 // Peak resident set of the calling process (bytes).
 double peak_rss_bytes();
-// Resident set of the calling process now (bytes; /proc/self/statm), 0 where unknown.
-double resident_bytes();
 // CPU time of the calling process, all threads (s).
 double process_cpu_seconds();
 // The system's 1-minute load average, or -1 where it cannot be read.

@@ -1,6 +1,7 @@
 #pragma once
 // Resident memory of the test process, for the tests that check that memory a run never
-// writes is never made (fields and maps of zeros on a large grid).
+// writes is never made (fields and maps of zeros on a large grid); bench_runs reads it too
+// (the process's own memory before a scene). Header-only: no test framework needed.
 #include <cstddef>
 #include <cstdio>
 
