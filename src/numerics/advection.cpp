@@ -219,9 +219,8 @@ void Stepper::hold_rest_faces(const State& s, const StripBuffers& w, const HeldF
     const int rl = x_faces ? r : r - 1, il = x_faces ? -1 : 0;  // the faces' "l" cells
     const std::ptrdiff_t gl = s.h.index(il, rl), gr = s.h.index(0, r);
     const std::ptrdiff_t kl = w.k(il, rl), kr = w.k(0, r);
-    const auto pair = [&](const Field2D& f) {
-        return std::pair{f.raw().data() + gl, f.raw().data() + gr};
-    };
+    // The terrain by its own rows: a chute field stores one (Field2D::same_in_every_row).
+    const auto pair = [&](const Field2D& f) { return std::pair{f.row(rl) + il, f.row(r)}; };
     const PageVector<double>& c = x_faces ? w.cx : w.cy;
     RestFaceRowInput in{s.h.raw().data() + gl, s.h.raw().data() + gr, held + gl, held + gr,
                         c.data() + kl, c.data() + kr, nullptr, nullptr, nullptr, nullptr,
@@ -509,9 +508,9 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
                                 sh + kf,
                                 shu + kf,
                                 shv + kf,
-                                terrain_.elevation.raw().data() + kf,
-                                metric ? terrain_.sx.raw().data() + kf : nullptr,
-                                metric ? terrain_.sy.raw().data() + kf : nullptr};
+                                terrain_.elevation.row(r),
+                                metric ? terrain_.sx.row(r) : nullptr,
+                                metric ? terrain_.sy.row(r) : nullptr};
         double* h_new = wait ? w.out_h.data() + kw : s.h.row(r);
         double* hu_new = wait ? w.out_hu.data() + kw : s.hu.row(r);
         double* hv_new = wait ? w.out_hv.data() + kw : s.hv.row(r);

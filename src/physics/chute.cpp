@@ -99,19 +99,24 @@ Grid chute_grid(const ChuteGeometry& c, double cell_size) {
 }
 
 TerrainFields chute_terrain(const ChuteGeometry& c, const Grid& grid, double gravity) {
+    // The chute varies only down the slope: one row per field (Field2D::same_in_every_row);
+    // ay, the cross curvatures cxy, cyy stay 0 and normal_thickness 1.
     TerrainFields t;
     t.frame = Frame::chute;
-    t.allocate(grid, c.has_transition(), false);
-    for (int j = 0; j < grid.ny; ++j) {
-        for (int i = 0; i < grid.nx; ++i) {
-            const double x = grid.x_center(i);
-            const double zeta = c.inclination(x);
-            t.ax(i, j) = gravity * std::sin(zeta);
-            t.ay(i, j) = 0.0;
-            t.px(i, j) = t.py(i, j) = t.gn(i, j) = gravity * std::cos(zeta);
-            t.elevation(i, j) = c.elevation(x);
-            if (t.has_curvature) t.cxx(i, j) = c.curvature(x);
-        }
+    t.allocate_same_in_every_row(grid, c.has_transition());
+    double* ax = t.ax.every_row();
+    double* px = t.px.every_row();
+    double* py = t.py.every_row();
+    double* gn = t.gn.every_row();
+    double* z = t.elevation.every_row();
+    double* cxx = t.has_curvature ? t.cxx.every_row() : nullptr;
+    for (int i = 0; i < grid.nx; ++i) {
+        const double x = grid.x_center(i);
+        const double zeta = c.inclination(x);
+        ax[i] = gravity * std::sin(zeta);
+        px[i] = py[i] = gn[i] = gravity * std::cos(zeta);
+        z[i] = c.elevation(x);
+        if (cxx != nullptr) cxx[i] = c.curvature(x);
     }
     t.extend_to_ghosts();
     return t;

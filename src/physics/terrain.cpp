@@ -62,6 +62,28 @@ TerrainFields& TerrainFields::operator=(const TerrainFields& other) {
     return *this;
 }
 
+namespace {
+// Every field of t, each made by make(its value everywhere); curvature and metric only
+// if asked.
+template <class Make>
+void allocate_fields(TerrainFields& t, Make make, bool curvature, bool metric) {
+    t.ax = make(0.0);
+    t.ay = make(0.0);
+    t.px = make(0.0);
+    t.py = make(0.0);
+    t.gn = make(0.0);
+    t.normal_thickness = make(1.0);
+    t.elevation = make(0.0);
+    t.has_curvature = curvature;
+    t.has_metric = metric;
+    t.cxx = curvature ? make(0.0) : Field2D();
+    t.cxy = curvature ? make(0.0) : Field2D();
+    t.cyy = curvature ? make(0.0) : Field2D();
+    t.sx = metric ? make(0.0) : Field2D();
+    t.sy = metric ? make(0.0) : Field2D();
+}
+}  // namespace
+
 void TerrainFields::allocate(const Grid& g, bool curvature, bool metric) {
     // The caller writes every cell (an analytic terrain): huge pages (field_storage.hpp).
     const auto make = [&](double v) {
@@ -69,20 +91,12 @@ void TerrainFields::allocate(const Grid& g, bool curvature, bool metric) {
         f.advise_written_whole();
         return f;
     };
-    ax = make(0.0);
-    ay = make(0.0);
-    px = make(0.0);
-    py = make(0.0);
-    gn = make(0.0);
-    normal_thickness = make(1.0);
-    elevation = make(0.0);
-    has_curvature = curvature;
-    has_metric = metric;
-    cxx = curvature ? make(0.0) : Field2D();
-    cxy = curvature ? make(0.0) : Field2D();
-    cyy = curvature ? make(0.0) : Field2D();
-    sx = metric ? make(0.0) : Field2D();
-    sy = metric ? make(0.0) : Field2D();
+    allocate_fields(*this, make, curvature, metric);
+}
+
+void TerrainFields::allocate_same_in_every_row(const Grid& g, bool curvature) {
+    const auto make = [&](double v) { return Field2D::same_in_every_row(g.nx, g.ny, kGhostLayers, v); };
+    allocate_fields(*this, make, curvature, false);
 }
 
 void TerrainFields::extend_to_ghosts() {

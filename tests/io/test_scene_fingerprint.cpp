@@ -5,9 +5,11 @@
 
 #include <cstdint>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "avalanche/io/checkpoint_file.hpp"
+#include "avalanche/physics/chute.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 
 namespace avalanche {
@@ -150,6 +152,29 @@ TEST(SceneFingerprint, TerrainMadeOnDemandCountsByItsElevation) {
     Scene s(true);
     s.terrain.elevation(4, 5) = with_bit_flipped(s.terrain.elevation(4, 5), 0);
     EXPECT_NE(s.fingerprint(), base) << "elevation";
+}
+
+// The chute's terrain stores one row per field (Field2D::same_in_every_row). Its digest is
+// that of its values: the same once a write has given a field every row, different when
+// one cell of one row differs from the rest.
+TEST(SceneFingerprint, AFieldOfOneRowCountsByItsValues) {
+    Scene chute;
+    ChuteGeometry c;
+    c.slope_deg = 35.0;
+    c.length = 26.0;
+    c.width = 14.0;
+    chute.terrain = chute_terrain(c, chute.grid, 9.81);
+    ASSERT_TRUE(chute.terrain.ax.same_in_every_row());
+    const std::string base = chute.fingerprint();
+    Scene expanded = chute;
+    expanded.terrain.ax(4, 5) = std::as_const(chute.terrain.ax)(4, 5);  // a write: every row, same values
+    ASSERT_FALSE(expanded.terrain.ax.same_in_every_row());
+    EXPECT_EQ(expanded.fingerprint(), base);
+    expanded.terrain.ax(4, 5) = with_bit_flipped(expanded.terrain.ax(4, 5), 0);
+    EXPECT_NE(expanded.fingerprint(), base) << "one cell of one row";
+    Scene other = chute;
+    other.terrain.elevation.every_row()[2] += 1e-9;  // every row at once
+    EXPECT_NE(other.fingerprint(), base);
 }
 
 }  // namespace

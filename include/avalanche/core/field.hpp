@@ -3,6 +3,14 @@
 // stencils near the edges need no branches. Storage is one contiguous
 // vector, row-major (x fastest), so row sweeps vectorise; a field written whole sits on
 // huge pages (field_storage.hpp).
+//
+// A field the same in every row, ghost rows included (same_in_every_row: the chute's
+// terrain, which varies only down the slope), stores that one row: every row reads it,
+// through the const accessors and row(j) alike. Its row step is 0, so raw() is one row
+// long and a flat offset taken from another field's index() does not address it: read
+// it by (i, j) or row(j). A non-const accessor (operator(), row, raw, set_interior)
+// first gives it storage for every row, the values kept, so a writer that makes the
+// rows differ cannot write one row for all of them.
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -20,9 +28,22 @@ public:
     // the memory of cells nobody writes is never touched. Any other value is written
     // everywhere, on huge pages.
     Field2D(int nx, int ny, int ghosts, double value = 0.0)
-        : nx_(nx), ny_(ny), ng_(ghosts), stride_(nx + 2 * ghosts),
+        : nx_(nx), ny_(ny), ng_(ghosts), stride_(nx + 2 * ghosts), row_step_(stride_),
           data_(cells_with_ghosts(nx, ny, ghosts)) {
         if (!is_positive_zero(value)) fill(value);
+    }
+    // A field whose rows are all alike (see above): one row of storage, filled with value.
+    // Write it through every_row().
+    static Field2D same_in_every_row(int nx, int ny, int ghosts, double value = 0.0) {
+        Field2D f;
+        f.nx_ = nx;
+        f.ny_ = ny;
+        f.ng_ = ghosts;
+        f.stride_ = nx + 2 * ghosts;
+        f.row_step_ = 0;
+        f.data_ = FieldStorage(static_cast<std::size_t>(f.stride_));
+        if (!is_positive_zero(value)) std::fill(f.data_.begin(), f.data_.end(), value);
+        return f;
     }
 
     // A copy writes every cell: on huge pages (field_storage.hpp), where std::vector's copy
@@ -30,7 +51,7 @@ public:
     // memory; to one of another size it is a copy, moved in.
     Field2D(const Field2D& other)
         : nx_(other.nx_), ny_(other.ny_), ng_(other.ng_), stride_(other.stride_),
-          data_(other.data_.size()) {
+          row_step_(other.row_step_), data_(other.data_.size()) {
         advise_written_whole();
         std::copy(other.data_.begin(), other.data_.end(), data_.begin());
     }
@@ -42,6 +63,7 @@ public:
         ny_ = other.ny_;
         ng_ = other.ng_;
         stride_ = other.stride_;
+        row_step_ = other.row_step_;
         return *this;
     }
     Field2D(Field2D&&) noexcept = default;
@@ -53,17 +75,31 @@ public:
     [[nodiscard]] int ghosts() const { return ng_; }
     [[nodiscard]] int stride() const { return stride_; }
     [[nodiscard]] bool empty() const { return data_.empty(); }
+    // True while the field stores one row that every row reads (same_in_every_row).
+    [[nodiscard]] bool same_in_every_row() const { return row_step_ != stride_; }
 
-    // Linear index of cell (i, j); i in [-ng, nx+ng), j in [-ng, ny+ng).
+    // Linear index of cell (i, j) in raw(); i in [-ng, nx+ng), j in [-ng, ny+ng).
     [[nodiscard]] std::ptrdiff_t index(int i, int j) const {
         assert(i >= -ng_ && i < nx_ + ng_ && j >= -ng_ && j < ny_ + ng_);
-        return static_cast<std::ptrdiff_t>(j + ng_) * stride_ + (i + ng_);
+        return static_cast<std::ptrdiff_t>(j + ng_) * row_step_ + (i + ng_);
     }
-    double& operator()(int i, int j) { return data_[index(i, j)]; }
+    double& operator()(int i, int j) {
+        store_every_row();
+        return data_[index(i, j)];
+    }
     double operator()(int i, int j) const { return data_[index(i, j)]; }
-    double* row(int j) { return data_.data() + index(0, j); }
+    double* row(int j) {
+        store_every_row();
+        return data_.data() + index(0, j);
+    }
     [[nodiscard]] const double* row(int j) const { return data_.data() + index(0, j); }
+    // Column 0 of the one row a field same_in_every_row stores, to write it.
+    double* every_row() {
+        assert(same_in_every_row());
+        return data_.data() + ng_;
+    }
 
+    // Fills every cell; a field same_in_every_row stays one row.
     void fill(double v) {
         advise_written_whole();
         std::fill(data_.begin(), data_.end(), v);
@@ -71,7 +107,10 @@ public:
     // Before every cell is written (a copy of the elevation, say): the field is offered
     // for huge pages (field_storage.hpp says why only then).
     void advise_written_whole() { avalanche::advise_written_whole(data_.data(), data_.size() * sizeof(double)); }
-    FieldStorage& raw() { return data_; }
+    FieldStorage& raw() {
+        store_every_row();
+        return data_;
+    }
     [[nodiscard]] const FieldStorage& raw() const { return data_; }
 
     // Interior values as a dense nx*ny row-major vector (j = 0 first).
@@ -87,29 +126,46 @@ public:
             std::copy(values.begin() + static_cast<std::ptrdiff_t>(j) * nx_,
                       values.begin() + static_cast<std::ptrdiff_t>(j + 1) * nx_, row(j));
     }
-    // Copies the nearest interior value into every ghost cell (zero gradient).
+    // Copies the nearest interior value into every ghost cell (zero gradient). A field
+    // same_in_every_row has its ghost rows already: only its row's ends are written.
     void extend_to_ghosts() {
-        for (int j = 0; j < ny_; ++j) {
+        const bool one_row = same_in_every_row();
+        for (int j = 0; j < (one_row ? 1 : ny_); ++j) {
             for (int g = 1; g <= ng_; ++g) {
-                (*this)(-g, j) = (*this)(0, j);
-                (*this)(nx_ - 1 + g, j) = (*this)(nx_ - 1, j);
+                at(-g, j) = at(0, j);
+                at(nx_ - 1 + g, j) = at(nx_ - 1, j);
             }
         }
+        if (one_row) return;
         for (int g = 1; g <= ng_; ++g) {
             for (int i = -ng_; i < nx_ + ng_; ++i) {
-                (*this)(i, -g) = (*this)(i, 0);
-                (*this)(i, ny_ - 1 + g) = (*this)(i, ny_ - 1);
+                at(i, -g) = at(i, 0);
+                at(i, ny_ - 1 + g) = at(i, ny_ - 1);
             }
         }
     }
 
 private:
+    double& at(int i, int j) { return data_[index(i, j)]; }
+    // Before a write that may make the rows differ: a field same_in_every_row gets storage
+    // for every row, each a copy of the one it had.
+    void store_every_row() {
+        if (row_step_ == stride_) [[likely]]
+            return;
+        FieldStorage all(cells_with_ghosts(nx_, ny_, ng_));
+        for (int j = 0; j < ny_ + 2 * ng_; ++j)
+            std::copy(data_.begin(), data_.end(), all.begin() + static_cast<std::ptrdiff_t>(j) * stride_);
+        data_ = std::move(all);
+        row_step_ = stride_;
+    }
+
     static std::size_t cells_with_ghosts(int nx, int ny, int ghosts) {
         return static_cast<std::size_t>(nx + 2 * ghosts) * static_cast<std::size_t>(ny + 2 * ghosts);
     }
     static bool is_positive_zero(double v) { return v == 0.0 && !std::signbit(v); }
 
     int nx_ = 0, ny_ = 0, ng_ = 0, stride_ = 0;
+    int row_step_ = 0;  // stride_, or 0 where every row reads one (same_in_every_row)
     FieldStorage data_;
 };
 
