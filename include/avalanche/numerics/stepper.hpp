@@ -174,8 +174,9 @@ class Stepper {
         // strip starts at carried_for.
         int carried_for = 0;
         int vel_end = 0, p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
-        void allocate(std::ptrdiff_t row_stride, int row_capacity);
-        std::vector<PageVector<double>*> strip_arrays();
+        // Every array for row_capacity rows of row_stride; the predictors' only with
+        // `predictors` (the WAF scheme).
+        void allocate(std::ptrdiff_t row_stride, int row_capacity, bool predictors);
         // The invariant bounds hold "no bound" (kNoVelocityBound) until written, in the
         // columns [bounds_c0, bounds_c1) of every row (buffer positions, column -ng at 0),
         // which cover_columns widens to [c0, c1) before a stage reads them.
