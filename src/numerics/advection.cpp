@@ -35,19 +35,39 @@
 
 namespace avalanche {
 
-void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int row_capacity, bool predictors) {
+void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int strip_rows, bool predictors) {
     stride = row_stride;
-    rows = row_capacity;
-    // Fresh arrays of untouched zeros (PageVector): a stage's first write of a column
-    // makes its pages. The bounds' "no bound" is written by cover_columns. The first-order
-    // scheme has no predictors: their nine arrays stay empty (below 256 kB an array is
-    // on the heap, zeroed when made: 0.53 MB a thread on a row of 306 cells).
-    const std::size_t n = static_cast<std::size_t>(stride) * static_cast<std::size_t>(rows);
-    for (auto* a : {&su, &sv, &cx, &cy, &ax, &ay, &u_lo, &u_hi, &v_lo, &v_hi, &speed_hi, &fx_h,
-                    &fx_hu, &fx_hv, &fy_h, &fy_hu, &fy_hv, &factor, &out_h, &out_hu, &out_hv})
-        *a = PageVector<double>(n);
-    for (auto* a : {&yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a})
-        *a = predictors ? PageVector<double>(n) : PageVector<double>();
+    rows = strip_rows + 8;
+    // Each array's positions, from the row ranges of advect_strip for a strip [J, J + S)
+    // at position 4 (base J - 4), with what its readers reach beyond them:
+    // - su, sv: the velocity rows [J - 4, J + S + 4).
+    // - The per-cell stage (cx .. speed_hi) and the x-predictor (pred_*): rows
+    //   [J - 3, J + S + 3), the y-faces' four-cell stencils [J - 3, J + S + 2) included.
+    // - yfo_*: the y-predictor's face rows J - 1 .. J + S + 1.
+    // - fx_*, factor: rows J - 1 .. J + S (the update's and the edges' reach).
+    // - fy_*: face rows J - 1 .. J + S + 1 (the donor factors of row J + S read the last).
+    // - out_*: the strip's own rows.
+    // The rows carry_rows moves lie within these. Fresh arrays of untouched zeros
+    // (PageVector): a stage's first write of a column makes its pages. The bounds' "no
+    // bound" is written by cover_columns. The first-order scheme has no predictors: their
+    // nine arrays stay empty.
+    const int S = strip_rows;
+    const auto make = [&](std::initializer_list<StripRows*> arrays, int first_row, int end_row) {
+        for (StripRows* a : arrays) a->allocate(stride, first_row, end_row);
+    };
+    make({&su, &sv}, 0, S + 8);
+    make({&cx, &cy, &ax, &ay, &u_lo, &u_hi, &v_lo, &v_hi, &speed_hi}, 1, S + 7);
+    make({&fx_h, &fx_hu, &fx_hv, &factor}, 3, S + 5);
+    make({&fy_h, &fy_hu, &fy_hv}, 3, S + 6);
+    make({&out_h, &out_hu, &out_hv}, 4, S + 4);
+    if (predictors) {
+        make({&yfo_h, &yfo_qn, &yfo_qt}, 3, S + 6);
+        make({&pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a}, 1, S + 7);
+    } else {
+        for (StripRows* a : {&yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &pred_u,
+                             &pred_v, &pred_a})
+            *a = StripRows{};
+    }
     bounds_c0 = bounds_c1 = 0;
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);
@@ -65,12 +85,13 @@ void Stepper::StripBuffers::cover_columns(int c0, int c1) {
     if (c0 >= c1) return;
     if (bounds_c0 == bounds_c1) bounds_c0 = bounds_c1 = c0;  // nothing covered yet
     const auto fill = [&](int from, int to) {
-        for (int q = 0; q < rows; ++q) {
-            const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(q) * stride;
-            std::fill(u_lo.data() + row + from, u_lo.data() + row + to, kNoVelocityBound);
-            std::fill(v_lo.data() + row + from, v_lo.data() + row + to, kNoVelocityBound);
-            std::fill(u_hi.data() + row + from, u_hi.data() + row + to, -kNoVelocityBound);
-            std::fill(v_hi.data() + row + from, v_hi.data() + row + to, -kNoVelocityBound);
+        // The four bounds share their positions (allocate).
+        const std::ptrdiff_t end = u_lo.first + static_cast<std::ptrdiff_t>(u_lo.v.size());
+        for (std::ptrdiff_t row = u_lo.first; row < end; row += stride) {
+            std::fill(u_lo.at(row + from), u_lo.at(row + to), kNoVelocityBound);
+            std::fill(v_lo.at(row + from), v_lo.at(row + to), kNoVelocityBound);
+            std::fill(u_hi.at(row + from), u_hi.at(row + to), -kNoVelocityBound);
+            std::fill(v_hi.at(row + from), v_hi.at(row + to), -kNoVelocityBound);
         }
     };
     if (c0 < bounds_c0) fill(c0, bounds_c0);
@@ -85,7 +106,7 @@ void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
     // faces of row J), the neighbours of the rows it computes (velocities and
     // pressure coefficients) and the x-predictor rows under its first y-faces.
     struct Carried {
-        PageVector<double>* a;
+        StripRows* a;
         int first, count;
     };
     const Carried first_order[] = {
@@ -99,10 +120,9 @@ void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
                                   {&pred_u, 0, 3}, {&pred_v, 0, 3}, {&pred_a, 0, 3}};
     const std::ptrdiff_t first = i0 + ng, width = i1 - i0;
     const auto move = [&](const Carried& c) {
-        double* d = c.a->data();
         for (int q = 4 + c.first; q < 4 + c.first + c.count; ++q) {  // row J + d at position 4 + d
             const std::ptrdiff_t to = static_cast<std::ptrdiff_t>(q) * stride + first;
-            std::copy_n(d + to + static_cast<std::ptrdiff_t>(by) * stride, width, d + to);
+            std::copy_n(c.a->at(to + static_cast<std::ptrdiff_t>(by) * stride), width, c.a->at(to));
         }
     };
     for (const Carried& c : first_order) move(c);
@@ -121,8 +141,8 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
     const std::ptrdiff_t o = w.k(0, r);
     // The DEM frame stores no px, py, gn: the kernel computes them (and nt) from sx, sy.
     const PressureRowInput in{s.h.row(r),
-                              w.su.data() + o,
-                              w.sv.data() + o,
+                              w.su.at(o),
+                              w.sv.at(o),
                               metric ? nullptr : terrain_.px.row(r),
                               metric ? nullptr : terrain_.py.row(r),
                               metric ? nullptr : terrain_.gn.row(r),
@@ -131,9 +151,9 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
                               metric ? terrain_.sy.row(r) : nullptr,
                               isotropic ? nullptr : w.regime_row.data() + kGhostLayers,
                               terrain_.slope_gravity};
-    const PressureRowOutput out{w.cx.data() + o,      w.cy.data() + o,   w.u_lo.data() + o,
-                                w.u_hi.data() + o,    w.v_lo.data() + o, w.v_hi.data() + o,
-                                w.speed_hi.data() + o, w.ax.data() + o,    w.ay.data() + o};
+    const PressureRowOutput out{w.cx.at(o),      w.cy.at(o),   w.u_lo.at(o),
+                                w.u_hi.at(o),    w.v_lo.at(o), w.v_hi.at(o),
+                                w.speed_hi.at(o), w.ax.at(o),    w.ay.at(o)};
     const PressureRowParams p{k_, k_max_, h_min_, isotropic};
     avalanche::pressure_row(in, out, p, ia, ib);
 }
@@ -220,9 +240,9 @@ void Stepper::hold_rest_faces(const State& s, const StripBuffers& w, const HeldF
     const std::ptrdiff_t kl = w.k(il, rl), kr = w.k(0, r);
     // The terrain by its own rows: a chute field stores one (Field2D::same_in_every_row).
     const auto pair = [&](const Field2D& f) { return std::pair{f.row(rl) + il, f.row(r)}; };
-    const PageVector<double>& c = x_faces ? w.cx : w.cy;
+    const StripBuffers::StripRows& c = x_faces ? w.cx : w.cy;
     RestFaceRowInput in{s.h.raw().data() + gl, s.h.raw().data() + gr, held + gl, held + gr,
-                        c.data() + kl, c.data() + kr, nullptr, nullptr, nullptr, nullptr,
+                        c.at(kl), c.at(kr), nullptr, nullptr, nullptr, nullptr,
                         nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
     if (terrain_.has_metric) {
         // The DEM frame stores no ax, ay, gn: the kernel computes them from the slopes.
@@ -277,7 +297,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     const int v0 = std::max(J - 4, -ng), v1 = std::min(Je + 4, ny + ng);
     for (int r = std::max(v0, w.vel_end); r < v1; ++r) {
         const std::ptrdiff_t k = w.k(0, r);
-        state_velocity_row(s.h.row(r), s.hu.row(r), s.hv.row(r), w.su.data() + k, w.sv.data() + k,
+        state_velocity_row(s.h.row(r), s.hu.row(r), s.hv.row(r), w.su.at(k), w.sv.at(k),
                            pc0, pc1);
     }
     w.vel_end = std::max(w.vel_end, v1);
@@ -301,21 +321,22 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     const auto full = [&](int i, int r) { return s.h.index(i, r); };
     // c: the pressure coefficients, a: the celerities (both from buffer index kc).
     const auto face_in = [&](const double* h, const double* qn, const double* qt, std::ptrdiff_t kq,
-                             const PageVector<double>& c, const PageVector<double>& a,
+                             const StripBuffers::StripRows& c, const StripBuffers::StripRows& a,
                              std::ptrdiff_t kc, std::ptrdiff_t off) {
-        FaceRowInput in{h + kq, qn + kq, qt + kq, c.data() + kc, off};
-        in.a = a.data() + kc;
+        FaceRowInput in{h + kq, qn + kq, qt + kq, c.at(kc), off};
+        in.a = a.at(kc);
         return in;
     };
     // The same with the state's velocity quotients (normal un, tangential ut) from buffer index kv.
-    const auto with_velocities = [](FaceRowInput in, const PageVector<double>& un,
-                                    const PageVector<double>& ut, std::ptrdiff_t kv) {
-        in.un = un.data() + kv;
-        in.ut = ut.data() + kv;
+    const auto with_velocities = [](FaceRowInput in, const StripBuffers::StripRows& un,
+                                    const StripBuffers::StripRows& ut, std::ptrdiff_t kv) {
+        in.un = un.at(kv);
+        in.ut = ut.at(kv);
         return in;
     };
-    const auto face_out = [](auto& a, auto& b2, auto& c, std::ptrdiff_t k) {  // strip or row arrays
-        return FaceRowOutput{a.data() + k, b2.data() + k, c.data() + k};
+    const auto face_out = [](StripBuffers::StripRows& a, StripBuffers::StripRows& b2,
+                             StripBuffers::StripRows& c, std::ptrdiff_t k) {
+        return FaceRowOutput{a.at(k), b2.at(k), c.at(k)};
     };
     const double dt_dx = tau / grid_.dx, dt_dy = tau / grid_.dy;
     const Limiter lim = numerics_.limiter;
@@ -359,14 +380,14 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     const auto hold_x_faces = [&](int r) {
         if (rest_in_ == nullptr) return;
         const std::ptrdiff_t k = w.k(0, r);
-        hold_rest_faces(s, w, rest_in_, true, r, b.i0, b.i1 + 1, w.fx_h.data() + k,
-                        w.fx_hu.data() + k, w.fx_hv.data() + k);
+        hold_rest_faces(s, w, rest_in_, true, r, b.i0, b.i1 + 1, w.fx_h.at(k),
+                        w.fx_hu.at(k), w.fx_hv.at(k));
     };
     const auto hold_y_faces = [&](int r) {
         if (rest_in_ == nullptr) return;
         const std::ptrdiff_t k = w.k(0, r);
-        hold_rest_faces(s, w, rest_in_, false, r, b.i0, b.i1, w.fy_h.data() + k,
-                        w.fy_hv.data() + k, w.fy_hu.data() + k);
+        hold_rest_faces(s, w, rest_in_, false, r, b.i0, b.i1, w.fy_h.at(k),
+                        w.fy_hv.at(k), w.fy_hu.at(k));
     };
 
     // 2. x-faces: WAF on the state advanced tau/2 in y (Wang & Li 2017 eqs. 6-9), or
@@ -385,18 +406,19 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
             // The y-predictor of row r, used at once by the x-faces of row r.
             // Its velocity quotients (normal hv / h, tangential hu / h) are kept for the
             // x-faces, which read every cell twice.
-            FaceRowOutput predicted = face_out(w.row_h, w.row_hv, w.row_hu, pc0 + ng);
+            const std::ptrdiff_t c = pc0 + ng;
+            FaceRowOutput predicted{w.row_h.data() + c, w.row_hv.data() + c, w.row_hu.data() + c};
             predicted.un = w.row_v.data() + pc0 + ng;
             predicted.ut = w.row_u.data() + pc0 + ng;
             predictor_row(
                 with_velocities(face_in(sh, shv, shu, full(pc0, r), w.cy, w.ay, w.k(pc0, r), st),
                                 w.sv, w.su, w.k(pc0, r)),
                 face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), ratio, hd, predicted, n);
-            celerity_row(w.row_h.data() + pc0 + ng, w.cx.data() + w.k(pc0, r), hd,
+            celerity_row(w.row_h.data() + pc0 + ng, w.cx.at(w.k(pc0, r)), hd,
                          w.row_a.data() + pc0 + ng, n);
             const std::ptrdiff_t k = w.k(b.i0, r), c0 = b.i0 + ng;
             FaceRowInput in{w.row_h.data() + c0, w.row_hu.data() + c0, w.row_hv.data() + c0,
-                            w.cx.data() + k, 1};
+                            w.cx.at(k), 1};
             in.un = w.row_u.data() + c0;
             in.ut = w.row_v.data() + c0;
             in.a = w.row_a.data() + c0;
@@ -429,20 +451,20 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
                                 w.su, w.sv, w.k(b.i0, r)),
                 first_order, n + 1, hd);
             FaceRowOutput predicted = face_out(w.pred_h, w.pred_hu, w.pred_hv, w.k(b.i0, r));
-            predicted.un = w.pred_u.data() + w.k(b.i0, r);
-            predicted.ut = w.pred_v.data() + w.k(b.i0, r);
+            predicted.un = w.pred_u.at(w.k(b.i0, r));
+            predicted.ut = w.pred_v.at(w.k(b.i0, r));
             predictor_row(
                 with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.ax, w.k(b.i0, r), 1),
                                 w.su, w.sv, w.k(b.i0, r)),
                 first_order, ratio, hd, predicted, n);
-            celerity_row(w.pred_h.data() + w.k(b.i0, r), w.cy.data() + w.k(b.i0, r), hd,
-                         w.pred_a.data() + w.k(b.i0, r), n);
+            celerity_row(w.pred_h.at(w.k(b.i0, r)), w.cy.at(w.k(b.i0, r)), hd,
+                         w.pred_a.at(w.k(b.i0, r)), n);
         }
         w.xp_end = std::max(w.xp_end, xp1);
         for (int r = std::max(y0, w.yf_end); r < y1; ++r) {
             const std::ptrdiff_t k = w.k(b.i0, r);
-            waf_face_row(with_velocities(face_in(w.pred_h.data(), w.pred_hv.data(),
-                                                 w.pred_hu.data(), k, w.cy, w.pred_a, k, st),
+            waf_face_row(with_velocities(face_in(w.pred_h.at(k), w.pred_hv.at(k),
+                                                 w.pred_hu.at(k), 0, w.cy, w.pred_a, k, st),
                                          w.pred_v, w.pred_u, k),
                          face_out(w.fy_h, w.fy_hv, w.fy_hu, k), n, hd, dt_dy, lim);
             hold_y_faces(r);
@@ -467,12 +489,10 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     // carry no mass, but it is set to 1 so that no stale value can ever scale a flux.
     const double rx = tau / grid_.dx, ry = tau / grid_.dy;
     const auto rows_at = [&w](std::ptrdiff_t kw) {  // the face fluxes from buffer index kw
-        return FaceFluxRows{w.fx_h.data() + kw, w.fx_hu.data() + kw, w.fx_hv.data() + kw,
-                            w.fy_h.data() + kw, w.fy_hu.data() + kw, w.fy_hv.data() + kw};
+        return FaceFluxRows{w.fx_h.at(kw), w.fx_hu.at(kw), w.fx_hv.at(kw),
+                            w.fy_h.at(kw), w.fy_hu.at(kw), w.fy_hv.at(kw)};
     };
-    const double* fxh = w.fx_h.data();
-    const double* fyh = w.fy_h.data();
-    double* factor = w.factor.data();
+    StripBuffers::StripRows& factor = w.factor;
     for (int r = std::max(J - 1, w.fac_end); r <= Je; ++r) {
         if (r < b.j0 || r >= b.j1) {
             for (int i = b.i0 - 1; i <= b.i1; ++i) factor[w.k(i, r)] = 1.0;
@@ -480,7 +500,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
         }
         factor[w.k(b.i0 - 1, r)] = factor[w.k(b.i1, r)] = 1.0;
         const std::ptrdiff_t kw = w.k(0, r);
-        donor_factor_row(rows_at(kw), sh + full(0, r), rx, ry, hd, st, factor + kw, b.i0, b.i1);
+        donor_factor_row(rows_at(kw), sh + full(0, r), rx, ry, hd, st, factor.at(kw), b.i0, b.i1);
     }
     w.fac_end = std::max(w.fac_end, Je + 1);
 
@@ -498,42 +518,43 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     for (int r = J; r < Je; ++r) {
         const std::ptrdiff_t kw = w.k(0, r), kf = full(0, r);
         const UpdateRowInput in{rows_at(kw),
-                                factor + kw,
-                                w.u_lo.data() + kw,
-                                w.u_hi.data() + kw,
-                                w.v_lo.data() + kw,
-                                w.v_hi.data() + kw,
-                                w.speed_hi.data() + kw,
+                                factor.at(kw),
+                                w.u_lo.at(kw),
+                                w.u_hi.at(kw),
+                                w.v_lo.at(kw),
+                                w.v_hi.at(kw),
+                                w.speed_hi.at(kw),
                                 sh + kf,
                                 shu + kf,
                                 shv + kf,
                                 terrain_.elevation.row(r),
                                 metric ? terrain_.sx.row(r) : nullptr,
                                 metric ? terrain_.sy.row(r) : nullptr};
-        double* h_new = wait ? w.out_h.data() + kw : s.h.row(r);
-        double* hu_new = wait ? w.out_hu.data() + kw : s.hu.row(r);
-        double* hv_new = wait ? w.out_hv.data() + kw : s.hv.row(r);
+        double* h_new = wait ? w.out_h.at(kw) : s.h.row(r);
+        double* hu_new = wait ? w.out_hu.at(kw) : s.hu.row(r);
+        double* hv_new = wait ? w.out_hv.at(kw) : s.hv.row(r);
         update_row(in, up, h_new, hu_new, hv_new, b.i0, b.i1);
-        if (rest_in_ != nullptr) keep_held_at_rest(rest_in_ + kf, fxh + kw, fyh + kw, w.stride,
+        if (rest_in_ != nullptr) keep_held_at_rest(rest_in_ + kf, w.fx_h.at(kw), w.fy_h.at(kw), w.stride,
                                                    hu_new, hv_new,
                                                    rest_out_ ? rest_out_ + kf : nullptr, b.i0, b.i1);
     }
 
     // 6. Volume through the open edges, after scaling, per boundary face (summed in
     // advect() in a fixed order).
-    const auto outflow = [&](const double* fh, std::ptrdiff_t k, std::ptrdiff_t off, double sign) {
+    const auto outflow = [&](const StripBuffers::StripRows& fh, std::ptrdiff_t k, std::ptrdiff_t off,
+                             double sign) {
         return std::max(sign * (fh[k] * donor_factor_of(fh[k], factor[k - off], factor[k])), 0.0);
     };
     for (int r = J; r < Je; ++r) {
-        if (b.i0 == 0) edge_outflow_[0][r] = outflow(fxh, w.k(0, r), 1, -1.0) * tau * grid_.dy;
-        if (b.i1 == nx) edge_outflow_[1][r] = outflow(fxh, w.k(nx, r), 1, 1.0) * tau * grid_.dy;
+        if (b.i0 == 0) edge_outflow_[0][r] = outflow(w.fx_h, w.k(0, r), 1, -1.0) * tau * grid_.dy;
+        if (b.i1 == nx) edge_outflow_[1][r] = outflow(w.fx_h, w.k(nx, r), 1, 1.0) * tau * grid_.dy;
     }
     if (b.j0 == 0 && J == 0)
         for (int i = b.i0; i < b.i1; ++i)
-            edge_outflow_[2][i] = outflow(fyh, w.k(i, 0), st, -1.0) * tau * grid_.dx;
+            edge_outflow_[2][i] = outflow(w.fy_h, w.k(i, 0), st, -1.0) * tau * grid_.dx;
     if (b.j1 == ny && Je == ny)
         for (int i = b.i0; i < b.i1; ++i)
-            edge_outflow_[3][i] = outflow(fyh, w.k(i, ny), st, 1.0) * tau * grid_.dx;
+            edge_outflow_[3][i] = outflow(w.fy_h, w.k(i, ny), st, 1.0) * tau * grid_.dx;
     w.carried_for = Je;
 
     // 7. The rows another thread's strip reads wait in wait (advect()).
@@ -549,9 +570,9 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     for (int r = J; r < Je; ++r) {
         const std::ptrdiff_t kw = w.k(b.i0, r);
         const std::ptrdiff_t kt = wait->at(b.i0, r);
-        std::copy_n(w.out_h.data() + kw, width, wait->h.data() + kt);
-        std::copy_n(w.out_hu.data() + kw, width, wait->hu.data() + kt);
-        std::copy_n(w.out_hv.data() + kw, width, wait->hv.data() + kt);
+        std::copy_n(w.out_h.at(kw), width, wait->h.data() + kt);
+        std::copy_n(w.out_hu.at(kw), width, wait->hu.data() + kt);
+        std::copy_n(w.out_hv.at(kw), width, wait->hv.data() + kt);
     }
 }
 
@@ -569,7 +590,7 @@ void Stepper::advect(State& s, double tau) {
         strips_.resize(static_cast<std::size_t>(threads));
     for (int t = 0; t < threads; ++t) {
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
-        if (w.rows == 0) w.allocate(s.h.stride(), kStripRows + 8, numerics_.scheme == Scheme::waf);
+        if (w.rows == 0) w.allocate(s.h.stride(), kStripRows, numerics_.scheme == Scheme::waf);
         w.carried_for = std::numeric_limits<int>::min();  // a new state: nothing carries over
     }
     // The regimes are computed row by row with the pressure stage (advect_strip) and

@@ -108,27 +108,47 @@ class Stepper {
 
   private:
     // Scratch of one strip of rows of the advection (advection.cpp): every array has
-    // the grid's row stride and holds the rows [base, base + rows) of one stage field.
+    // the grid's row stride. The strip's rows [base, base + rows) are its positions 0 ..
+    // rows - 1, and buffer index k(i, r) is one numbering of them for every array; each
+    // array holds only the positions its stage computes and reads (StripRows).
     // Their pages are made where the stages write (PageVector): only the columns of the
     // box on a wide grid with a small flow.
     // A thread works through consecutive strips, and the rows a strip shares with the
     // next (one below its end, three above) are moved down and kept, so every stage
     // row is computed once per thread.
     struct StripBuffers {
+        // One stage field: the positions [first_row, end_row) of the strip, at row_stride.
+        // Element k(i, r) is at(k(i, r)); a row kernel gets at() of the row's column 0
+        // and reads the rows next to it through the stride, so a row it reads must lie
+        // within the array's positions too (advection.cpp derives each array's from the
+        // row ranges of advect_strip).
+        struct StripRows {
+            PageVector<double> v;
+            std::ptrdiff_t first = 0;  // k of v[0]
+            void allocate(std::ptrdiff_t row_stride, int first_row, int end_row) {
+                first = static_cast<std::ptrdiff_t>(first_row) * row_stride;
+                v = PageVector<double>(static_cast<std::size_t>(row_stride) *
+                                       static_cast<std::size_t>(end_row - first_row));
+            }
+            [[nodiscard]] double* at(std::ptrdiff_t k) { return v.data() + (k - first); }
+            [[nodiscard]] const double* at(std::ptrdiff_t k) const { return v.data() + (k - first); }
+            double& operator[](std::ptrdiff_t k) { return *at(k); }
+            double operator[](std::ptrdiff_t k) const { return *at(k); }
+        };
         std::ptrdiff_t stride = 0;
         int ng = 0, base = 0, rows = 0;
-        PageVector<double> su, sv;  // the state's velocity quotients hu / h, hv / h
-        PageVector<double> cx, cy;  // k_x p_x and k_y p_y per cell
-        PageVector<double> ax, ay;  // celerities sqrt(cx h), sqrt(cy h) (0 on thin cells)
-        PageVector<double> u_lo, u_hi, v_lo, v_hi, speed_hi;  // invariant bounds (u -/+ 2a_x, ...)
-        PageVector<double> yfo_h, yfo_qn, yfo_qt;     // first-order y-faces of the y-predictor
-        PageVector<double> pred_h, pred_hu, pred_hv;  // state advanced by the x-predictor
-        PageVector<double> pred_u, pred_v;            // and its velocity quotients
-        PageVector<double> pred_a;                    // and its celerity in y, sqrt(cy h)
-        PageVector<double> fx_h, fx_hu, fx_hv;        // x-face fluxes; face (i, r) left of cell i
-        PageVector<double> fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
-        PageVector<double> factor;                    // donor factors
-        PageVector<double> out_h, out_hu, out_hv;     // the updated rows of the strip
+        StripRows su, sv;  // the state's velocity quotients hu / h, hv / h
+        StripRows cx, cy;  // k_x p_x and k_y p_y per cell
+        StripRows ax, ay;  // celerities sqrt(cx h), sqrt(cy h) (0 on thin cells)
+        StripRows u_lo, u_hi, v_lo, v_hi, speed_hi;  // invariant bounds (u -/+ 2a_x, ...)
+        StripRows yfo_h, yfo_qn, yfo_qt;     // first-order y-faces of the y-predictor
+        StripRows pred_h, pred_hu, pred_hv;  // state advanced by the x-predictor
+        StripRows pred_u, pred_v;            // and its velocity quotients
+        StripRows pred_a;                    // and its celerity in y, sqrt(cy h)
+        StripRows fx_h, fx_hu, fx_hv;        // x-face fluxes; face (i, r) left of cell i
+        StripRows fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
+        StripRows factor;                    // donor factors
+        StripRows out_h, out_hu, out_hv;     // the updated rows of the strip
         // The updated rows of a segment's first and last strips, which must wait until
         // every segment is done (advect()): rows [j0, j1), columns [i0, i1), row j0 first.
         struct WaitingRows {
@@ -174,9 +194,9 @@ class Stepper {
         // strip starts at carried_for.
         int carried_for = 0;
         int vel_end = 0, p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
-        // Every array for row_capacity rows of row_stride; the predictors' only with
-        // `predictors` (the WAF scheme).
-        void allocate(std::ptrdiff_t row_stride, int row_capacity, bool predictors);
+        // Every array for its positions of a strip of strip_rows rows (at most kStripRows)
+        // at row_stride; the predictors' only with `predictors` (the WAF scheme).
+        void allocate(std::ptrdiff_t row_stride, int strip_rows, bool predictors);
         // The invariant bounds hold "no bound" (kNoVelocityBound) until written, in the
         // columns [bounds_c0, bounds_c1) of every row (buffer positions, column -ng at 0),
         // which cover_columns widens to [c0, c1) before a stage reads them.
@@ -246,8 +266,9 @@ class Stepper {
     // shrink_box_to_wet for the rows it searched.
     std::vector<int> row_first_, row_last_;
     std::vector<StripBuffers> strips_;  // one per thread
-    // Rows per strip: the stage buffers of a strip (24 arrays of kStripRows + 8 rows)
-    // stay in a core's cache for grids up to a few thousand cells wide.
+    // Rows per strip: the stage buffers of a strip (30 arrays of kStripRows to
+    // kStripRows + 8 rows for WAF, StripBuffers::allocate) stay in a core's cache for
+    // grids up to a few thousand cells wide.
     static constexpr int kStripRows = 16;
     // Rows of a block, from each of its inner ends, whose new regime waits until every
     // block is done: a neighbouring block's stages compute the regimes of up to 3 rows
