@@ -10,7 +10,9 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
+#include <string>
 
 namespace avalanche::bench {
 
@@ -31,6 +33,31 @@ double RunRecord::bytes_per_cell() const {
 double RunRecord::scene_bytes_per_cell() const {
     const double cells = static_cast<double>(nx) * ny;
     return cells > 0.0 ? (peak_rss_bytes - start_rss_bytes) / cells : 0.0;
+}
+
+double RunRecord::data_bytes_per_cell() const {
+    const double cells = static_cast<double>(nx) * ny;
+    return cells > 0.0 ? data_peak_bytes / cells : 0.0;
+}
+
+bool reset_vm_hwm() {
+    std::ofstream f("/proc/self/clear_refs");
+    f << "5";  // "reset the peak resident set size to the current one" (proc(5))
+    f.flush();
+    return static_cast<bool>(f);
+}
+
+double vm_hwm_bytes() {
+    std::ifstream f("/proc/self/status");
+    std::string key;
+    while (f >> key) {
+        if (key == "VmHWM:") {
+            double kib = -1.0;
+            return f >> kib ? kib * 1024.0 : -1.0;
+        }
+        f.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
+    return -1.0;
 }
 
 double peak_rss_bytes() {
@@ -75,7 +102,10 @@ void print(const RunRecord& r) {
               << " M/s\n  peak memory " << r.peak_rss_bytes / 1048576.0
               << " MiB = " << r.bytes_per_cell() << " B/cell (" << r.scene_bytes_per_cell()
               << " B/cell above the " << r.start_rss_bytes / 1048576.0
-              << " MiB resident before the scene), mass error " << r.relative_mass_error
+              << " MiB resident before the scene)\n  the run's data at its peak "
+              << r.data_peak_bytes / 1048576.0 << " MiB = " << r.data_bytes_per_cell()
+              << " B/cell (a run after the timed ones, its code resident before)\n  mass error "
+              << r.relative_mass_error
               << ", outflow " << r.outflow_volume << " m^3\n  cpu / wall of the best run "
               << cpu_per_wall(r) << " (threads " << r.threads << "), load average before "
               << r.load_average << "\n";
@@ -116,6 +146,8 @@ void append_json(const RunRecord& r, const std::string& path) {
       << ", \"bytes_per_cell\": " << r.bytes_per_cell()
       << ", \"start_rss_bytes\": " << r.start_rss_bytes
       << ", \"scene_bytes_per_cell\": " << r.scene_bytes_per_cell()
+      << ", \"data_peak_bytes\": " << r.data_peak_bytes
+      << ", \"data_bytes_per_cell\": " << r.data_bytes_per_cell()
       << ", \"end_reason\": " << quoted(r.end_reason)
       << ", \"relative_mass_error\": " << r.relative_mass_error
       << ", \"outflow_volume\": " << r.outflow_volume << ", \"note\": " << quoted(r.note) << "}\n";

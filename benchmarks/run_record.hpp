@@ -34,16 +34,28 @@ struct RunRecord {
     // unknown): the program, its libraries and runtime, which a small grid's bytes per
     // cell would otherwise carry (1.6 MB on the project machine; case (b) peaks at 11-14).
     double start_rss_bytes = 0.0;
+    // The run's own data at its peak (0 where unknown): one more run of the case after
+    // the timed ones, its peak resident set above the resident set before its scene is
+    // built (bench_runs.cpp, data_peak_bytes). The code the run executes, which the
+    // timed runs made resident, is not in it: on case (b) a run makes 1.2-1.3 MB of the
+    // program's and its libraries' code resident, 21 B per cell of its 60 000 cells.
+    double data_peak_bytes = 0.0;
     std::string note;             // e.g. the ratio of case (d)
 
     [[nodiscard]] double best_wall() const;
     [[nodiscard]] double cell_updates_per_second() const;  // with the best wall time
     [[nodiscard]] double bytes_per_cell() const;           // peak RSS / grid cells
     [[nodiscard]] double scene_bytes_per_cell() const;     // (peak - start RSS) / grid cells
+    [[nodiscard]] double data_bytes_per_cell() const;      // data_peak_bytes / grid cells
 };
 
 // Peak resident set of the calling process (bytes).
 double peak_rss_bytes();
+// Resets the peak resident set of /proc/self/status (VmHWM) to the current resident set
+// (Linux: /proc/self/clear_refs); false where it cannot.
+bool reset_vm_hwm();
+// VmHWM of /proc/self/status (bytes), or -1 where it cannot be read.
+double vm_hwm_bytes();
 // CPU time of the calling process, all threads (s).
 double process_cpu_seconds();
 // The system's 1-minute load average, or -1 where it cannot be read.
