@@ -17,8 +17,9 @@
 // strip height, the bands or the thread count. A strip's updated rows go straight
 // into the state: after the update nothing of the strip's own rows is read again, by
 // it or by the segment's next strip (which reads the stage rows it is handed). Only
-// the first and last strips of a segment, whose rows another segment's strip reads
-// afresh, keep theirs in the thread's buffers until every segment is done (advect()).
+// the rows another segment's strip reads afresh, five at each inner end of a segment
+// (kStateRowsReadBeyond), wait in the thread's buffers until every segment is done
+// (advect()).
 #include <omp.h>
 
 #include <algorithm>
@@ -34,6 +35,14 @@
 #include "avalanche/numerics/update_rows.hpp"
 
 namespace avalanche {
+
+namespace {
+// The rows beyond its own that a strip's stages read of the state: the regime rule's
+// terms of the per-cell stage's rows, two beyond that stage's three (advect_strip,
+// regime_row_into; the velocity quotients reach four). A segment's first and last
+// strips hold back this many of their updated rows at the inner end (advect()).
+constexpr int kStateRowsReadBeyond = 5;
+}  // namespace
 
 void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int strip_rows, bool predictors) {
     stride = row_stride;
@@ -262,7 +271,7 @@ void Stepper::hold_rest_faces(const State& s, const StripBuffers& w, const HeldF
 // ---------------------------------------------------------------- one strip
 
 void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int Je,
-                           StripBuffers& w, StripBuffers::WaitingRows* wait) {
+                           StripBuffers& w, int wait_first, int wait_last) {
     const int ng = kGhostLayers, nx = grid_.nx, ny = grid_.ny;
     const bool waf = numerics_.scheme == Scheme::waf;
     const double hd = h_min_;
@@ -508,14 +517,16 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     // the scaled fluxes. Every stage above is done with rows [J, Je) of s, and the
     // thread's next strip reads none of them (it reads the stage rows it is handed), so
     // they are updated in place (a cell's update reads only its own state), unless
-    // another thread's strip reads them (advect()): then into the strip's out rows,
-    // which step 7 moves on. Each face is scaled by its donor's factor where it is used,
+    // another thread's strip reads them (advect(): the wait_first and wait_last rows at
+    // the strip's ends): then into the strip's out rows, which step 7 moves on. Each face is scaled by its donor's factor where it is used,
     // so both cells of a face compute the same product (x * 1 == x exactly for the
     // unscaled faces). A zero mass flux has no donor: its momentum (the pressure of a
     // wall face) passes unscaled.
     const bool metric = terrain_.has_metric;
     const UpdateRowParams up{rx, ry, st, energy_budget_, numerics_.gravity, h_min_};
+    const int first_end = std::min(J + wait_first, Je), last_begin = std::max(Je - wait_last, J);
     for (int r = J; r < Je; ++r) {
+        const bool wait = r < first_end || r >= last_begin;
         const std::ptrdiff_t kw = w.k(0, r), kf = full(0, r);
         const UpdateRowInput in{rows_at(kw),
                                 factor.at(kw),
@@ -557,22 +568,33 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
             edge_outflow_[3][i] = outflow(w.fy_h, w.k(i, ny), st, 1.0) * tau * grid_.dx;
     w.carried_for = Je;
 
-    // 7. The rows another thread's strip reads wait in wait (advect()).
-    if (!wait) return;
-    wait->j0 = J;
-    wait->j1 = Je;
-    wait->i0 = b.i0;
-    wait->i1 = b.i1;
-    const std::size_t width = static_cast<std::size_t>(b.i1 - b.i0);
-    const std::size_t n = width * static_cast<std::size_t>(Je - J);
-    for (auto* a : {&wait->h, &wait->hu, &wait->hv})
-        if (a->size() < n) a->resize(n);
-    for (int r = J; r < Je; ++r) {
-        const std::ptrdiff_t kw = w.k(b.i0, r);
-        const std::ptrdiff_t kt = wait->at(b.i0, r);
-        std::copy_n(w.out_h.at(kw), width, wait->h.data() + kt);
-        std::copy_n(w.out_hu.at(kw), width, wait->hu.data() + kt);
-        std::copy_n(w.out_hv.at(kw), width, wait->hv.data() + kt);
+    // 7. The rows another thread's strip reads wait in the thread's waiting rows until
+    // every segment is done (advect()), one entry per run of rows.
+    const auto keep = [&](int j0, int j1) {
+        if (j0 >= j1) return;
+        if (static_cast<int>(w.waiting.size()) <= w.waiting_used) w.waiting.emplace_back();
+        StripBuffers::WaitingRows& wr = w.waiting[static_cast<std::size_t>(w.waiting_used++)];
+        wr.j0 = j0;
+        wr.j1 = j1;
+        wr.i0 = b.i0;
+        wr.i1 = b.i1;
+        const std::size_t width = static_cast<std::size_t>(b.i1 - b.i0);
+        const std::size_t n = width * static_cast<std::size_t>(j1 - j0);
+        for (auto* a : {&wr.h, &wr.hu, &wr.hv})
+            if (a->size() < n) a->resize(n);
+        for (int r = j0; r < j1; ++r) {
+            const std::ptrdiff_t kw = w.k(b.i0, r);
+            const std::ptrdiff_t kt = wr.at(b.i0, r);
+            std::copy_n(w.out_h.at(kw), width, wr.h.data() + kt);
+            std::copy_n(w.out_hu.at(kw), width, wr.hu.data() + kt);
+            std::copy_n(w.out_hv.at(kw), width, wr.hv.data() + kt);
+        }
+    };
+    if (first_end >= last_begin) {
+        keep(J, Je);  // the two runs meet (or one is the whole strip)
+    } else {
+        keep(J, first_end);
+        keep(last_begin, Je);
     }
 }
 
@@ -664,9 +686,10 @@ void Stepper::advect(State& s, double tau) {
     // Each thread claims strips in row order; its consecutive strips of one band are a
     // segment, whose strips hand their stage rows on (advect_strip) and whose first strip
     // computes them afresh. A segment's first and last strips share rows with the
-    // neighbouring segments, whose strips read the old state there: their updated rows
-    // wait in the thread's buffers until every segment is done. The other strips write
-    // theirs into s at once (advect_strip, step 7), so no second state is kept.
+    // neighbouring segments, whose strips read the old state there: those updated rows
+    // (kStateRowsReadBeyond at each inner end) wait in the thread's buffers until every
+    // segment is done. The other rows go into s at once (advect_strip, steps 5 and 7),
+    // so no second state is kept.
     StripClaims claims;
     const ActiveBox per_cell = per_cell_box(b);
 #pragma omp parallel if (threaded_)
@@ -705,14 +728,13 @@ void Stepper::advect(State& s, double tau) {
             // past its end at most) come within kRegimeHeldRows of that strip's end only
             // if that strip is the box's last, shorter one, which ends the segment.
             w.block_j1 = ends ? st.j1 : strips[static_cast<std::size_t>(k + 1)].j1;
-            StripBuffers::WaitingRows* wait = nullptr;
-            if ((starts && k > 0) || (ends && k + 1 < nstrips)) {
-                if (static_cast<int>(w.waiting.size()) <= w.waiting_used) w.waiting.emplace_back();
-                wait = &w.waiting[static_cast<std::size_t>(w.waiting_used++)];
-            }
+            // The rows the strips of the neighbouring segments read wait (advect_strip).
+            const int wait_first = starts && k > 0 ? kStateRowsReadBeyond : 0;
+            const int wait_last = ends && k + 1 < nstrips ? kStateRowsReadBeyond : 0;
             // The band's columns; its stages' row ranges are the box's (advect_strip).
             const ActiveBox& band = bands_[st.band];
-            advect_strip(s, tau, ActiveBox{band.i0, band.i1, b.j0, b.j1}, st.j0, st.j1, w, wait);
+            advect_strip(s, tau, ActiveBox{band.i0, band.i1, b.j0, b.j1}, st.j0, st.j1, w,
+                         wait_first, wait_last);
         }
         // Every segment done: each thread now stores the regimes and rows its own
         // segments held back (rows of one thread only, so the threads write apart).

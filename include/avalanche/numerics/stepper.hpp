@@ -148,9 +148,10 @@ class Stepper {
         StripRows fx_h, fx_hu, fx_hv;        // x-face fluxes; face (i, r) left of cell i
         StripRows fy_h, fy_hu, fy_hv;        // y-face fluxes; face (i, r) below cell r
         StripRows factor;                    // donor factors
-        StripRows out_h, out_hu, out_hv;     // the updated rows of the strip
-        // The updated rows of a segment's first and last strips, which must wait until
-        // every segment is done (advect()): rows [j0, j1), columns [i0, i1), row j0 first.
+        StripRows out_h, out_hu, out_hv;     // the strip's updated rows that wait
+        // Updated rows of a segment's first or last strip that a neighbouring segment's
+        // strips read, and which must wait until every segment is done (advect()): rows
+        // [j0, j1), columns [i0, i1), row j0 first.
         struct WaitingRows {
             int j0 = 0, j1 = 0, i0 = 0, i1 = 0;
             std::vector<double> h, hu, hv;
@@ -159,7 +160,7 @@ class Stepper {
                 return static_cast<std::ptrdiff_t>(j - j0) * (i1 - i0) + (i - i0);
             }
         };
-        // The thread's waiting strips of this advection: waiting[0 .. waiting_used).
+        // The thread's waiting rows of this advection: waiting[0 .. waiting_used).
         std::vector<WaitingRows> waiting;
         int waiting_used = 0;
         // The regime of the row the pressure stage computes next (column 0 at ng): its
@@ -225,9 +226,10 @@ class Stepper {
     void keep_regime_row(const State& s, int r, int ia, int ib, StripBuffers& w);
     // Advects rows [j_begin, j_end) of s over the columns [b.i0, b.i1) of their band;
     // b's rows are the box's, which bound every stage's rows. The updated rows go into
-    // s itself, or into *wait when it is given.
+    // s itself, but for the first wait_first and the last wait_last, which another
+    // segment's strips read: those go into w's waiting rows (advect()).
     void advect_strip(State& s, double tau, const ActiveBox& b, int j_begin, int j_end,
-                      StripBuffers& w, StripBuffers::WaitingRows* wait);
+                      StripBuffers& w, int wait_first, int wait_last);
     void thin_layer_velocities(State& s) const;
     void shrink_box_to_wet(const State& s, const ActiveBox& search);
     // Cuts box_ into bands_ (from row_first_ and row_last_).
