@@ -34,11 +34,12 @@ struct RunRecord {
     // unknown): the program, its libraries and runtime, which a small grid's bytes per
     // cell would otherwise carry (1.6 MB on the project machine; case (b) peaks at 11-14).
     double start_rss_bytes = 0.0;
-    // The run's own data at its peak (0 where unknown): one more run of the case after
-    // the timed ones, its peak resident set above the resident set before its scene is
-    // built (bench_runs.cpp, data_peak_bytes). The code the run executes, which the
-    // timed runs made resident, is not in it: on case (b) a run makes 1.2-1.3 MB of the
-    // program's and its libraries' code resident, 21 B per cell of its 60 000 cells.
+    // The run's own data at its peak (0 where unknown, or with --data-peak off): one
+    // more run of the case after the timed ones, its peak resident set above the
+    // resident set before its scene is built (bench_runs.cpp, data_peak_bytes). The
+    // code the run executes, which the timed runs made resident, is not in it: on case
+    // (b) a run makes 1.2-1.3 MB of the program's and its libraries' code resident, 21 B
+    // per cell of its 60 000 cells.
     double data_peak_bytes = 0.0;
     std::string note;             // e.g. the ratio of case (d)
 
