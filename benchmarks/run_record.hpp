@@ -32,7 +32,7 @@ struct RunRecord {
     double peak_rss_bytes = 0.0;  // getrusage ru_maxrss of this process (one case per process)
     // The resident set of the case's process before its first scene is built (0 where
     // unknown): the program, its libraries and runtime, which a small grid's bytes per
-    // cell would otherwise carry (1.6 MB on the project machine; case (b) peaks at 11-14).
+    // cell would otherwise carry (1.6 MB on the project machine; case (b) peaks at 6-9 MB).
     double start_rss_bytes = 0.0;
     // The run's own data at its peak (0 where unknown, or with --data-peak off): one
     // more run of the case after the timed ones, its peak resident set above the
