@@ -160,9 +160,9 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
                               metric ? terrain_.sy.row(r) : nullptr,
                               isotropic ? nullptr : w.regime_row.data() + kGhostLayers,
                               terrain_.slope_gravity};
-    const PressureRowOutput out{w.cx.at(o),      w.cy.at(o),   w.u_lo.at(o),
-                                w.u_hi.at(o),    w.v_lo.at(o), w.v_hi.at(o),
-                                w.speed_hi.at(o), w.ax.at(o),    w.ay.at(o)};
+    const PressureRowOutput out{w.cx.at(o),   w.cy.at(o),   w.u_lo.at(o),
+                                w.u_hi.at(o), w.v_lo.at(o), w.v_hi.at(o),
+                                w.speed_hi.at(o), w.ax.at(o), w.ay.at(o)};
     const PressureRowParams p{k_, k_max_, h_min_, isotropic};
     avalanche::pressure_row(in, out, p, ia, ib);
 }
@@ -417,14 +417,13 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
             // x-faces, which read every cell twice.
             const std::ptrdiff_t c = pc0 + ng;
             FaceRowOutput predicted{w.row_h.data() + c, w.row_hv.data() + c, w.row_hu.data() + c};
-            predicted.un = w.row_v.data() + pc0 + ng;
-            predicted.ut = w.row_u.data() + pc0 + ng;
+            predicted.un = w.row_v.data() + c;
+            predicted.ut = w.row_u.data() + c;
             predictor_row(
                 with_velocities(face_in(sh, shv, shu, full(pc0, r), w.cy, w.ay, w.k(pc0, r), st),
                                 w.sv, w.su, w.k(pc0, r)),
                 face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), ratio, hd, predicted, n);
-            celerity_row(w.row_h.data() + pc0 + ng, w.cx.at(w.k(pc0, r)), hd,
-                         w.row_a.data() + pc0 + ng, n);
+            celerity_row(w.row_h.data() + c, w.cx.at(w.k(pc0, r)), hd, w.row_a.data() + c, n);
             const std::ptrdiff_t k = w.k(b.i0, r), c0 = b.i0 + ng;
             FaceRowInput in{w.row_h.data() + c0, w.row_hu.data() + c0, w.row_hv.data() + c0,
                             w.cx.at(k), 1};
@@ -518,10 +517,10 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     // thread's next strip reads none of them (it reads the stage rows it is handed), so
     // they are updated in place (a cell's update reads only its own state), unless
     // another thread's strip reads them (advect(): the wait_first and wait_last rows at
-    // the strip's ends): then into the strip's out rows, which step 7 moves on. Each face is scaled by its donor's factor where it is used,
-    // so both cells of a face compute the same product (x * 1 == x exactly for the
-    // unscaled faces). A zero mass flux has no donor: its momentum (the pressure of a
-    // wall face) passes unscaled.
+    // the strip's ends): then into the strip's out rows, which step 7 moves on. Each
+    // face is scaled by its donor's factor where it is used, so both cells of a face
+    // compute the same product (x * 1 == x exactly for the unscaled faces). A zero mass
+    // flux has no donor: its momentum (the pressure of a wall face) passes unscaled.
     const bool metric = terrain_.has_metric;
     const UpdateRowParams up{rx, ry, st, energy_budget_, numerics_.gravity, h_min_};
     const int first_end = std::min(J + wait_first, Je), last_begin = std::max(Je - wait_last, J);
@@ -545,9 +544,9 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
         double* hu_new = wait ? w.out_hu.at(kw) : s.hu.row(r);
         double* hv_new = wait ? w.out_hv.at(kw) : s.hv.row(r);
         update_row(in, up, h_new, hu_new, hv_new, b.i0, b.i1);
-        if (rest_in_ != nullptr) keep_held_at_rest(rest_in_ + kf, w.fx_h.at(kw), w.fy_h.at(kw), w.stride,
-                                                   hu_new, hv_new,
-                                                   rest_out_ ? rest_out_ + kf : nullptr, b.i0, b.i1);
+        if (rest_in_ != nullptr)
+            keep_held_at_rest(rest_in_ + kf, w.fx_h.at(kw), w.fy_h.at(kw), w.stride, hu_new, hv_new,
+                              rest_out_ ? rest_out_ + kf : nullptr, b.i0, b.i1);
     }
 
     // 6. Volume through the open edges, after scaling, per boundary face (summed in
