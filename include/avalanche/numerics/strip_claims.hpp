@@ -9,9 +9,9 @@
 // faster core no longer waits for the slower one at the end of every advection.
 //
 // A share's strips form segments (advection.cpp): the first strip of a segment computes
-// its stage rows afresh, and the first and last strips of a segment keep their updated
-// rows back until every segment is done, because another segment reads the state
-// there. So a thread must know, when it claims a strip, whether the strip ends its
+// its stage rows afresh, and the first and last strips of a segment keep back the
+// updated rows another segment reads (five at the inner end) until every segment is
+// done. So a thread must know, when it claims a strip, whether the strip ends its
 // share. The strip after the one a thread claims is therefore reserved to it: a thief
 // takes only the strips beyond, so a claimed strip that does not end the share is
 // followed by the same thread's next strip, whatever is stolen later.
