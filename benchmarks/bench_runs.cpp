@@ -172,6 +172,14 @@ Outcome run_once(Scene& s, long step_limit) {
     return o;
 }
 
+// A scene of the case, with the splitting --splitting asks for.
+template <class Build>
+Scene make_scene(Build build, const Options& opt) {
+    Scene s = build();
+    if (opt.splitting) s.numerics.splitting = *opt.splitting;
+    return s;
+}
+
 // The run's own data at its peak: one more run of the case, after the timed ones, from
 // a resident set that already holds the code it executes. The timed runs made the
 // program's and its libraries' pages resident as they first ran them (1.2-1.3 MB on case
@@ -187,8 +195,7 @@ double data_peak_bytes(Build build, long step_limit, const Options& opt) {
 #endif
     if (!reset_vm_hwm()) return 0.0;
     const double start = static_cast<double>(test::resident_bytes());
-    Scene s = build();
-    if (opt.splitting) s.numerics.splitting = *opt.splitting;
+    Scene s = make_scene(build, opt);
     (void)run_once(s, step_limit);
     const double peak = vm_hwm_bytes();
     return start > 0.0 && peak > start ? peak - start : 0.0;
@@ -207,8 +214,7 @@ RunRecord timed_case(const std::string& case_id, Build build, long step_limit, c
     r.start_rss_bytes = static_cast<double>(std::max(0LL, test::resident_bytes()));
     for (int k = 0; k < opt.repeat; ++k) {
         const auto t0 = Clock::now();
-        Scene s = build();
-        if (opt.splitting) s.numerics.splitting = *opt.splitting;
+        Scene s = make_scene(build, opt);
         const double scene_seconds = seconds_since(t0);
         r.scene = s.name;
         r.scheme = to_string(s.numerics.scheme);

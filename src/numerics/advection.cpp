@@ -69,14 +69,8 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int strip_rows, 
     make({&fx_h, &fx_hu, &fx_hv, &factor}, 3, S + 5);
     make({&fy_h, &fy_hu, &fy_hv}, 3, S + 6);
     make({&out_h, &out_hu, &out_hv}, 4, S + 4);
-    if (predictors) {
-        make({&yfo_h, &yfo_qn, &yfo_qt}, 3, S + 6);
-        make({&pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a}, 1, S + 7);
-    } else {
-        for (StripRows* a : {&yfo_h, &yfo_qn, &yfo_qt, &pred_h, &pred_hu, &pred_hv, &pred_u,
-                             &pred_v, &pred_a})
-            *a = StripRows{};
-    }
+    make({&yfo_h, &yfo_qn, &yfo_qt}, 3, predictors ? S + 6 : 3);  // no rows: empty
+    make({&pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a}, 1, predictors ? S + 7 : 1);
     bounds_c0 = bounds_c1 = 0;
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);
