@@ -19,6 +19,7 @@
 #include "cli_test_support.hpp"
 #include "dem_test_support.hpp"
 #include "io/io_test_support.hpp"
+#include "support/same_bits.hpp"
 
 namespace avalanche::test {
 
@@ -97,11 +98,6 @@ inline std::vector<std::string> files_with_extension(const std::string& dir,
         if (e.path().extension() == ext) out.push_back(e.path().filename().string());
     std::sort(out.begin(), out.end());
     return out;
-}
-
-// Bitwise equality of two double arrays (NaN-safe, -0 != +0).
-inline bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
 inline std::string gdal_dataset_metadata(const std::string& path, const std::string& key) {

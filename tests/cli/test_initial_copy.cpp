@@ -4,21 +4,18 @@
 // release on a large DEM does not write 24 bytes a cell for every scenario.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <vector>
 
 #include "avalanche/app/prepared_scene.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 #include "support/resident_memory.hpp"
+#include "support/same_bits.hpp"
 
 namespace avalanche {
 namespace {
 
-bool same_bits(const Field2D& a, const Field2D& b) {
-    return a.raw().size() == b.raw().size() &&
-           std::memcmp(a.raw().data(), b.raw().data(), a.raw().size() * sizeof(double)) == 0;
-}
+using test::same_bits;
 
 PreparedScene small_release_on(const Grid& g) {
     PreparedScene p;

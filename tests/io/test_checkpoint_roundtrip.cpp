@@ -18,14 +18,12 @@
 #include "avalanche/physics/chute.hpp"
 #include "avalanche/physics/release.hpp"
 #include "io_test_support.hpp"
+#include "support/same_bits.hpp"
 
 namespace avalanche {
 namespace {
 
-template <class A, class B>
-bool same_bits(const A& a, const B& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
+using test::same_bits;
 
 // A 10 m x 4 m chute of 0.25 m cells with a box release; two monitoring points.
 struct Scene {

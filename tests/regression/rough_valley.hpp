@@ -1,22 +1,13 @@
 #pragma once
 // A rough valley DEM for the tests that compare runs to the bit
-// (test_terrain_on_demand.cpp, test_active_bands.cpp), and that comparison.
+// (test_terrain_on_demand.cpp, test_active_bands.cpp; support/same_bits.hpp compares).
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 #include "avalanche/core/field.hpp"
 #include "avalanche/core/grid.hpp"
 
 namespace avalanche::testing {
-
-// Two fields of no cells (an optional terrain field not made) are the same; memcmp must
-// not be given their null data.
-inline bool same_bits(const Field2D& a, const Field2D& b) {
-    return a.raw().size() == b.raw().size() &&
-           (a.raw().empty() ||
-            std::memcmp(a.raw().data(), b.raw().data(), a.raw().size() * sizeof(double)) == 0);
-}
 
 // A valley falling towards +y with `slope` (elevation drop per metre), its floor along the
 // middle column (`across`: the cross-profile's curvature), and a rough surface, so that

@@ -14,6 +14,7 @@
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 #include "rough_valley.hpp"
+#include "support/same_bits.hpp"
 
 using namespace avalanche;
 
@@ -21,7 +22,7 @@ namespace {
 
 constexpr double kG = 9.81;
 
-using avalanche::testing::same_bits;
+using avalanche::test::same_bits;
 
 // A valley falling to the north (+y) at 45 degrees, with a rough surface.
 std::vector<double> rough_valley(const Grid& g) { return avalanche::testing::rough_valley(g, 1.0, 0.001); }

@@ -16,13 +16,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "avalanche/numerics/stepper.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "support/analytic_harness.hpp"
 #include "support/resident_memory.hpp"
+#include "support/same_bits.hpp"
 
 using namespace avalanche;
 
@@ -69,10 +69,7 @@ Result run(Scheme scheme, Boundary boundary, int threads, bool all_to_first = fa
     return {s, stepper.outflow_volume(), stepper.regime(), stepper.strip_steals()};
 }
 
-bool same_bits(const Field2D& a, const Field2D& b) {
-    return a.raw().size() == b.raw().size() &&
-           std::memcmp(a.raw().data(), b.raw().data(), a.raw().size() * sizeof(double)) == 0;
-}
+using test::same_bits;
 
 }  // namespace
 

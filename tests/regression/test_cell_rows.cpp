@@ -10,19 +10,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
 
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/energy_cap.hpp"
+#include "support/same_bits.hpp"
 
 using namespace avalanche;
 
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::same_bits;
 
 struct Row {
     std::vector<double> h, hu, hv, ax, ay, gn, elev, cxx, cxy, cyy, sx, sy, px, py;

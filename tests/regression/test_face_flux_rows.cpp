@@ -15,19 +15,19 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <vector>
 
 #include "avalanche/numerics/face_flux_rows.hpp"
 #include "avalanche/numerics/riemann_hllc.hpp"
+#include "support/same_bits.hpp"
 #include "avalanche/numerics/waf_face.hpp"
 
 using namespace avalanche;
 
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::same_bits;
 
 // A (2 + rows + 2) x width block of cells with random states; row r of faces reads
 // rows r-2 .. r+1 along y.

@@ -4,16 +4,16 @@
 // wet/dry, dry/wet and dry/dry faces, sub- and supercritical, both flow directions.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <random>
 
 #include "avalanche/numerics/riemann_hllc.hpp"
+#include "support/same_bits.hpp"
 
 using namespace avalanche;
 
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::same_bits;
 
 }  // namespace
 

@@ -11,7 +11,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <thread>
 #include <vector>
 
@@ -20,6 +19,7 @@
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 #include "rough_valley.hpp"
+#include "support/same_bits.hpp"
 
 using namespace avalanche;
 
@@ -27,7 +27,7 @@ namespace {
 
 constexpr double kG = 9.81;
 
-using avalanche::testing::same_bits;
+using avalanche::test::same_bits;
 
 // A valley falling along y, sized so that neither side is a multiple of the 64-cell tiles.
 std::vector<double> rough_valley(const Grid& g) { return avalanche::testing::rough_valley(g, 0.6, 0.002); }
@@ -57,7 +57,6 @@ TEST(TerrainOnDemand, TheDemFrameStoresTheSlopesNotTheirCoefficients) {
     ASSERT_TRUE(t.has_metric);
     ASSERT_EQ(t.slope_gravity, kG);
     for (const Field2D* f : {&t.ax, &t.ay, &t.px, &t.py, &t.gn}) EXPECT_TRUE(f->empty());
-    const auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
     long cells = 0, steep = 0;
     const int ng = kGhostLayers;
     for (int j = -ng; j < g.ny + ng; ++j)
@@ -65,10 +64,11 @@ TEST(TerrainOnDemand, TheDemFrameStoresTheSlopesNotTheirCoefficients) {
             const double zx = t.sx(i, j), zy = t.sy(i, j);
             const double s2 = 1.0 + zx * zx + zy * zy;
             const CellCoefficients c = t.coefficients(i, j);
-            ASSERT_TRUE(same(c.ax, -kG * zx / s2) && same(c.ay, -kG * zy / s2) &&
-                        same(c.px, kG / (s2 * (1.0 + zx * zx))) &&
-                        same(c.py, kG / (s2 * (1.0 + zy * zy))) && same(c.gn, kG / std::sqrt(s2)) &&
-                        same(t.normal_thickness(i, j), 1.0 / std::sqrt(s2)))
+            ASSERT_TRUE(same_bits(c.ax, -kG * zx / s2) && same_bits(c.ay, -kG * zy / s2) &&
+                        same_bits(c.px, kG / (s2 * (1.0 + zx * zx))) &&
+                        same_bits(c.py, kG / (s2 * (1.0 + zy * zy))) &&
+                        same_bits(c.gn, kG / std::sqrt(s2)) &&
+                        same_bits(t.normal_thickness(i, j), 1.0 / std::sqrt(s2)))
                 << "cell " << i << ", " << j;
             ++cells;
             steep += std::abs(zx) + std::abs(zy) > 0.3;

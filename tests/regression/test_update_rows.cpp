@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -23,6 +22,7 @@
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/energy_cap.hpp"
 #include "avalanche/numerics/update_rows.hpp"
+#include "support/same_bits.hpp"
 
 using namespace avalanche;
 
@@ -30,7 +30,7 @@ namespace {
 
 constexpr double kNoBound = std::numeric_limits<double>::max();
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::same_bits;
 
 // Three rows (r - 1, r, r + 1) of width w; the row under test is the middle one.
 struct Rows {

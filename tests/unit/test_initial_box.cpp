@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -15,6 +14,7 @@
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 #include "support/resident_memory.hpp"
+#include "support/same_bits.hpp"
 
 using namespace avalanche;
 
@@ -33,7 +33,7 @@ TerrainFields bumpy_plane(const Grid& g) {
     return dem_terrain(g, z, kG);
 }
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::same_bits;
 
 }  // namespace
 
@@ -132,8 +132,7 @@ TEST(InitialBox, AShapesStateIsSearchedInTheCellsOverItsExtent) {
         ActiveBox a, b;
         const State whole = state_at_rest(g, f, t, &a);
         const State searched = state_at_rest(g, f, t, cells, &b);
-        EXPECT_EQ(std::memcmp(whole.h.raw().data(), searched.h.raw().data(), whole.h.raw().size() * sizeof(double)),
-                  0);
+        EXPECT_TRUE(same_bits(whole.h, searched.h));
         EXPECT_EQ(a.i0, b.i0);
         EXPECT_EQ(a.i1, b.i1);
         EXPECT_EQ(a.j0, b.j0);
