@@ -37,11 +37,11 @@
 namespace avalanche {
 
 namespace {
-// The rows beyond its own that a strip's stages read of the state: the regime rule's
-// terms of the per-cell stage's rows, two beyond that stage's three (advect_strip,
-// regime_row_into; the velocity quotients reach four). A segment's first and last
-// strips hold back this many of their updated rows at the inner end (advect()).
-constexpr int kStateRowsReadBeyond = 5;
+// The rows on either side of a regime row whose state the regime rule reads
+// (regime_row_into: its terms of rows r - 2 .. r + 2). With the per-cell stage's rows,
+// three beyond a strip's own, they make the five state rows beyond its own that a
+// strip reads (Stepper::kStateRowsReadBeyond; the velocity quotients reach four).
+constexpr int kRegimeTermsReach = 2;
 }  // namespace
 
 void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int strip_rows, bool predictors) {
@@ -183,14 +183,14 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
     // (advect_strip), so the terms kept are the ones the rows would give now.
     const int c0 = std::max(ia - 2, lo), c1 = std::min(ib + 2, hi + 1);
     const bool metric = terrain_.has_metric;
-    w.terms_end = std::max(w.terms_end, clamped(r - 2));
-    for (int j = w.terms_end; j <= clamped(r + 2); ++j)
+    w.terms_end = std::max(w.terms_end, clamped(r - kRegimeTermsReach));
+    for (int j = w.terms_end; j <= clamped(r + kRegimeTermsReach); ++j)
         regime_terms_row(s.h.row(j), s.hu.row(j), s.hv.row(j), metric ? terrain_.sx.row(j) : nullptr,
                          metric ? terrain_.sy.row(j) : nullptr, h_min_, rest_speed,
                          {w.ring_row(w.term_wet, j), w.ring_row(w.term_still_x, j),
                           w.ring_row(w.term_still_y, j)},
                          c0, c1);
-    w.terms_end = std::max(w.terms_end, clamped(r + 2) + 1);
+    w.terms_end = std::max(w.terms_end, clamped(r + kRegimeTermsReach) + 1);
 
     const int jm = clamped(r - 1), jp = clamped(r + 1), jmm = clamped(r - 2), jpp = clamped(r + 2);
     RegimeRowInput in{s.h.row(r),    s.hu.row(r), s.hv.row(r),  s.h.row(jm),
@@ -293,11 +293,25 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     const int xp0 = std::max(y0 - 2, pr0), xp1 = std::min(y1 + 1, pr1);     // x-predictor
     const int q0 = std::max(std::min({J - 1, x0 - 1, y0 - 1, xp0}), pr0);
     const int q1 = std::min(std::max({Je + 1, x1 + 1, y1, xp1}), pr1);
+    const bool regimes = material_.earth_pressure != EarthPressureModel::isotropic;
+    const int v0 = std::max(J - 4, -ng), v1 = std::min(Je + 4, ny + ng);  // velocity quotients
+
+    // The rows beyond [J, Je) that these ranges read of the state: the velocity
+    // quotients', the regime terms' of the pressure rows, the first-order faces' (rows
+    // r - 1 and r of face row r, in x0 .. x1 and y0 .. y1 - 1; the donor factors and
+    // rest faces read within them); and the rows whose regimes this strip computes. A
+    // neighbouring segment's first or last strip holds back that many of its rows
+    // (kStateRowsReadBeyond, kRegimeHeldRows): the tests check them against the most
+    // recorded here.
+    const int terms = regimes ? kRegimeTermsReach : 0;
+    w.rows_read_beyond = std::max({w.rows_read_beyond, J - v0, v1 - Je, J - (q0 - terms),
+                                   q1 + terms - Je, J - (std::min(x0, y0) - 1),
+                                   std::max(x1 + 1, y1) - Je});
+    if (regimes) w.regime_rows_beyond = std::max({w.regime_rows_beyond, J - q0, q1 - Je});
 
     // 1. The velocity quotients of the state, once per cell, for the pressure stage
     // (rows q0 .. q1 - 1) and the first-order fluxes on the state (rows J - 4 .. Je + 2);
     // then the pressure coefficients and invariant bounds.
-    const int v0 = std::max(J - 4, -ng), v1 = std::min(Je + 4, ny + ng);
     for (int r = std::max(v0, w.vel_end); r < v1; ++r) {
         const std::ptrdiff_t k = w.k(0, r);
         state_velocity_row(s.h.row(r), s.hu.row(r), s.hv.row(r), w.su.at(k), w.sv.at(k),
@@ -307,7 +321,6 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
 
     // The regime of each pressure row first (regime_row_into): its previous regime and
     // the state's rows r - 2 .. r + 2, none of which a strip has written yet.
-    const bool regimes = material_.earth_pressure != EarthPressureModel::isotropic;
     const double rest_speed = 0.5 * tan_delta_ * numerics_.gravity * tau;  // see regime_row
     for (int r = std::max(q0, w.p_end); r < q1; ++r) {
         if (regimes) {
@@ -751,6 +764,10 @@ void Stepper::advect(State& s, double tau) {
         }
     }
     strip_steals_ += static_cast<std::uint64_t>(claims.steals());
+    for (const StripBuffers& w : strips_) {
+        state_rows_read_beyond_ = std::max(state_rows_read_beyond_, w.rows_read_beyond);
+        regime_rows_beyond_ = std::max(regime_rows_beyond_, w.regime_rows_beyond);
+    }
     // Volume through the open edges: west, east, south, north, in that order.
     double out = 0.0;
     if (b.i0 == 0)

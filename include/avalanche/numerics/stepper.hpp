@@ -100,6 +100,18 @@ class Stepper {
     // compare those runs to one thread's, to the bit.
     [[nodiscard]] std::uint64_t strip_steals() const { return strip_steals_; }
     void set_all_strips_to_first_thread(bool all) { all_strips_to_first_thread_ = all; }
+    // The rows a segment's first and last strips hold back at their inner end until every
+    // segment is done (advect()): updated state rows, which the neighbouring segment's
+    // strips read; and new regimes of rows whose regimes that segment computes too, from
+    // the previous ones (keep_regime_row: writing them while it reads would be a data
+    // race, though the values would agree). Then the most rows beyond its own that a
+    // strip has read of the state, and computed regimes of, in the advections so far
+    // (advect_strip's row ranges): the counts held back must cover them, which
+    // test_advection_strips.cpp checks.
+    static constexpr int kStateRowsReadBeyond = 5;
+    static constexpr int kRegimeHeldRows = 4;
+    [[nodiscard]] int state_rows_read_beyond() const { return state_rows_read_beyond_; }
+    [[nodiscard]] int regime_rows_beyond() const { return regime_rows_beyond_; }
 
     // The operators, public for tests of the splitting.
     void advect(State& s, double tau);
@@ -195,6 +207,9 @@ class Stepper {
         // strip starts at carried_for.
         int carried_for = 0;
         int vel_end = 0, p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
+        // The most rows beyond its own that a strip of this thread read of the state, and
+        // computed regimes of (Stepper::state_rows_read_beyond, regime_rows_beyond).
+        int rows_read_beyond = 0, regime_rows_beyond = 0;
         // Every array for its positions of a strip of strip_rows rows (at most kStripRows)
         // at row_stride; the predictors' only with `predictors` (the WAF scheme).
         void allocate(std::ptrdiff_t row_stride, int strip_rows, bool predictors);
@@ -272,12 +287,8 @@ class Stepper {
     // kStripRows + 8 rows for WAF, StripBuffers::allocate) stay in a core's cache for
     // grids up to a few thousand cells wide.
     static constexpr int kStripRows = 16;
-    // Rows of a block, from each of its inner ends, whose new regime waits until every
-    // block is done: a neighbouring block's stages compute the regimes of up to 3 rows
-    // of this block (advect_strip) from the previous ones, and writing a row while
-    // another thread reads it would be a data race. (Its values would agree: regime_row
-    // gives a cell the same regime again from its own result.)
-    static constexpr int kRegimeHeldRows = 4;
+    // state_rows_read_beyond(), regime_rows_beyond().
+    int state_rows_read_beyond_ = 0, regime_rows_beyond_ = 0;
     double k_max_;          // largest earth-pressure coefficient
     double energy_budget_;  // see energy_budget(); +infinity = not set
     bool budget_set_ = false;
