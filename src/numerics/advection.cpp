@@ -309,9 +309,12 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
                                    std::max(x1 + 1, y1) - Je});
     if (regimes) w.regime_rows_beyond = std::max({w.regime_rows_beyond, J - q0, q1 - Je});
 
-    // 1. The velocity quotients of the state, once per cell, for the pressure stage
-    // (rows q0 .. q1 - 1) and the first-order fluxes on the state (rows J - 4 .. Je + 2);
-    // then the pressure coefficients and invariant bounds.
+    // 1. The velocity quotients of the state, once per cell, rows v0 .. v1 - 1: for the
+    // pressure stage (rows q0 .. q1 - 1) and the first-order fluxes on the state (faces
+    // reading rows J - 3 .. Je + 2), and row Je + 3 for the segment's next strip
+    // (carry_rows). Row J - 4 is read by none of them (with v0 = J - 3 the 18
+    // bench_equivalence hashes were unchanged, 2026-12-06; not kept: it would save only
+    // one row at a segment's start). Then the pressure coefficients and invariant bounds.
     for (int r = std::max(v0, w.vel_end); r < v1; ++r) {
         const std::ptrdiff_t k = w.k(0, r);
         state_velocity_row(s.h.row(r), s.hu.row(r), s.hv.row(r), w.su.at(k), w.sv.at(k),
