@@ -298,15 +298,14 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
 
     // The rows beyond [J, Je) that these ranges read of the state: the velocity
     // quotients', the regime terms' of the pressure rows, the first-order faces' (rows
-    // r - 1 and r of face row r, in x0 .. x1 and y0 .. y1 - 1; the donor factors and
-    // rest faces read within them); and the rows whose regimes this strip computes. A
-    // neighbouring segment's first or last strip holds back that many of its rows
-    // (kStateRowsReadBeyond, kRegimeHeldRows): the tests check them against the most
-    // recorded here.
+    // r - 1 and r of face row r: the y-faces y0 .. y1 - 1, and the y-predictor's
+    // x0 .. x1, the same rows; the donor factors and rest faces read within them); and
+    // the rows whose regimes this strip computes. A neighbouring segment's first or last
+    // strip holds back that many of its rows (kStateRowsReadBeyond, kRegimeHeldRows):
+    // the tests check them against the most recorded here.
     const int terms = regimes ? kRegimeTermsReach : 0;
     w.rows_read_beyond = std::max({w.rows_read_beyond, J - v0, v1 - Je, J - (q0 - terms),
-                                   q1 + terms - Je, J - (std::min(x0, y0) - 1),
-                                   std::max(x1 + 1, y1) - Je});
+                                   q1 + terms - Je, J - (y0 - 1), y1 - Je});
     if (regimes) w.regime_rows_beyond = std::max({w.regime_rows_beyond, J - q0, q1 - Je});
 
     // 1. The velocity quotients of the state, once per cell, rows v0 .. v1 - 1: for the

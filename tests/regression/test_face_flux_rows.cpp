@@ -20,8 +20,8 @@
 
 #include "avalanche/numerics/face_flux_rows.hpp"
 #include "avalanche/numerics/riemann_hllc.hpp"
-#include "support/same_bits.hpp"
 #include "avalanche/numerics/waf_face.hpp"
+#include "support/same_bits.hpp"
 
 using namespace avalanche;
 
