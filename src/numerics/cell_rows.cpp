@@ -216,19 +216,17 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
                                     const PressureRowParams& p, int i) {
     const double hmin = p.h_min;
     const double hh = in.h[i];
-    double px, py, gn, nt;
+    double px, py, gn_nt;  // gn_nt: the load on a bed-normal depth, g_n times its factor
     if constexpr (Metric) {
         // The DEM frame's coefficients from the slopes, not read (dem_coefficients.hpp).
         const DemCoefficients c = dem_coefficients(in.sx[i], in.sy[i], in.slope_gravity);
         px = c.px;
         py = c.py;
-        gn = c.gn;
-        nt = c.normal_thickness;
+        gn_nt = c.gn_nt;
     } else {
         px = in.px[i];
         py = in.py[i];
-        gn = in.gn[i];
-        nt = in.nt[i];
+        gn_nt = in.gn[i] * in.nt[i];
     }
     double cx, cy;
     if constexpr (Isotropic) {
@@ -265,7 +263,7 @@ AVALANCHE_INLINE void pressure_lane(const PressureRowInput& in, const PressureRo
         const double w = in.sx[i] * u + in.sy[i] * v;
         speed2 += w * w;
     }
-    const double shi = std::sqrt(speed2) + 2.0 * std::sqrt(p.k_max * gn * hh * nt);
+    const double shi = std::sqrt(speed2) + 2.0 * std::sqrt(p.k_max * gn_nt * hh);
     out.u_lo[i] = wet ? u - ax : kNoVelocityBound;
     out.u_hi[i] = wet ? u + ax : -kNoVelocityBound;
     out.v_lo[i] = wet ? v - ay : kNoVelocityBound;

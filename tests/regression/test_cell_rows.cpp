@@ -16,6 +16,7 @@
 
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/energy_cap.hpp"
+#include "avalanche/physics/dem_coefficients.hpp"
 #include "support/same_bits.hpp"
 
 using namespace avalanche;
@@ -57,18 +58,17 @@ Row random_row(std::mt19937_64& rng, int n) {
     return r;
 }
 
-// The DEM frame's coefficients of every cell from its slopes sx, sy (dem_frame.hpp:
-// a = -g grad z / s^2, p_x = g / (s^2 (1 + z_x^2)), g_n = g / s), as dem_terrain stores
-// them: with slopes the kernels compute these instead of reading them.
+// The DEM frame's coefficients of every cell from its slopes sx, sy (dem_coefficients,
+// whose values test_dem_frame.cpp checks against their quotients): with slopes the kernels
+// compute these instead of reading them.
 void dem_coefficients_of_slopes(Row& r, double g) {
     for (std::size_t i = 0; i < r.sx.size(); ++i) {
-        const double zx = r.sx[i], zy = r.sy[i];
-        const double s2 = 1.0 + zx * zx + zy * zy;
-        r.ax[i] = -g * zx / s2;
-        r.ay[i] = -g * zy / s2;
-        r.px[i] = g / (s2 * (1.0 + zx * zx));
-        r.py[i] = g / (s2 * (1.0 + zy * zy));
-        r.gn[i] = g / std::sqrt(s2);
+        const DemCoefficients c = dem_coefficients(r.sx[i], r.sy[i], g);
+        r.ax[i] = c.ax;
+        r.ay[i] = c.ay;
+        r.px[i] = c.px;
+        r.py[i] = c.py;
+        r.gn[i] = c.gn;
     }
 }
 

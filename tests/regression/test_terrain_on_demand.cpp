@@ -16,6 +16,7 @@
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/numerics/stepper.hpp"
+#include "avalanche/physics/dem_coefficients.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 #include "rough_valley.hpp"
@@ -46,9 +47,10 @@ void expect_same_terrain(const TerrainFields& a, const TerrainFields& b) {
 
 // The DEM frame stores the slopes, not the coefficients that are functions of them
 // alone: ax, ay, px, py and gn are empty (40 bytes per cell), and every reader gets them
-// from TerrainFields::coefficients, which must give the frame's formulas (dem_frame.hpp,
-// written out here) of the stored slopes to the bit, in every cell, ghost cells
-// included; the stored normal_thickness is 1 / s of the same slopes.
+// from TerrainFields::coefficients, which must give dem_coefficients of the stored slopes
+// to the bit, in every cell, ghost cells included (the kernels compute the same); the
+// stored normal_thickness is dem_coefficients' 1 / s of the same slopes. Their values
+// against the frame's formulas: DemFrame.CoefficientsAreTheirQuotientsToAFewUlps.
 TEST(TerrainOnDemand, TheDemFrameStoresTheSlopesNotTheirCoefficients) {
     const Grid g{150, 97, 5.0, 5.0, 1000.0, 2000.0};
     DemFrameOptions complete;
@@ -62,13 +64,12 @@ TEST(TerrainOnDemand, TheDemFrameStoresTheSlopesNotTheirCoefficients) {
     for (int j = -ng; j < g.ny + ng; ++j)
         for (int i = -ng; i < g.nx + ng; ++i) {
             const double zx = t.sx(i, j), zy = t.sy(i, j);
-            const double s2 = 1.0 + zx * zx + zy * zy;
+            const DemCoefficients d = dem_coefficients(zx, zy, kG);
             const CellCoefficients c = t.coefficients(i, j);
-            ASSERT_TRUE(same_bits(c.ax, -kG * zx / s2) && same_bits(c.ay, -kG * zy / s2) &&
-                        same_bits(c.px, kG / (s2 * (1.0 + zx * zx))) &&
-                        same_bits(c.py, kG / (s2 * (1.0 + zy * zy))) &&
-                        same_bits(c.gn, kG / std::sqrt(s2)) &&
-                        same_bits(t.normal_thickness(i, j), 1.0 / std::sqrt(s2)))
+            ASSERT_TRUE(same_bits(c.ax, d.ax) && same_bits(c.ay, d.ay) &&
+                        same_bits(c.px, d.px) && same_bits(c.py, d.py) &&
+                        same_bits(c.gn, d.gn) &&
+                        same_bits(t.normal_thickness(i, j), d.normal_thickness))
                 << "cell " << i << ", " << j;
             ++cells;
             steep += std::abs(zx) + std::abs(zy) > 0.3;

@@ -22,6 +22,7 @@
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/energy_cap.hpp"
 #include "avalanche/numerics/update_rows.hpp"
+#include "avalanche/physics/dem_coefficients.hpp"
 #include "support/same_bits.hpp"
 
 using namespace avalanche;
@@ -253,19 +254,19 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
             sy.v[k] = sym(rng);
             if (k < w) regime[static_cast<std::size_t>(k)] = static_cast<RegimeFlags>(4.0 * unit(rng));
         }
-        // With slopes (the DEM frame) the kernel computes px, py, gn and nt from them, as
-        // dem_terrain stores them (dem_frame.hpp: p_x = g / (s^2 (1 + z_x^2)), g_n = g / s,
-        // nt = 1 / s); the reference reads these.
+        // The load on a bed-normal depth, g_n times the normal-thickness factor: read in the
+        // chute frame. With slopes (the DEM frame) the kernel computes px, py and it from
+        // them (dem_coefficients, whose values test_dem_frame.cpp checks against their
+        // quotients); the reference reads these.
+        Rows gn_nt(w);
+        for (int k = 0; k < 3 * w; ++k) gn_nt.v[k] = gn.v[k] * nt.v[k];
         const double g_slopes = 9.80665;
         if (metric)
             for (int k = 0; k < 3 * w; ++k) {
-                const double zx = sx.v[k], zy = sy.v[k];
-                const double s2 = 1.0 + zx * zx + zy * zy;
-                const double s = std::sqrt(s2);
-                px.v[k] = g_slopes / (s2 * (1.0 + zx * zx));
-                py.v[k] = g_slopes / (s2 * (1.0 + zy * zy));
-                gn.v[k] = g_slopes / s;
-                nt.v[k] = 1.0 / s;
+                const DemCoefficients c = dem_coefficients(sx.v[k], sy.v[k], g_slopes);
+                px.v[k] = c.px;
+                py.v[k] = c.py;
+                gn_nt.v[k] = c.gn_nt;
             }
         // Column i of the row is element i + ng.
         const auto col0 = [&](Rows& f, int row) { return f.v.data() + row * w + ng; };
@@ -319,7 +320,7 @@ TEST(UpdateRows, PressureRowIsBitwiseTheScalarLoop) {
                     const double ww = sx.v[k] * u + sy.v[k] * v;
                     speed2 += ww * ww;
                 }
-                ref[6] = std::sqrt(speed2) + 2.0 * std::sqrt(k_max * gn.v[k] * hh * nt.v[k]);
+                ref[6] = std::sqrt(speed2) + 2.0 * std::sqrt(k_max * gn_nt.v[k] * hh);
                 ref[7] = std::sqrt(cx * hh);
                 ref[8] = std::sqrt(cy * hh);
             }

@@ -15,18 +15,34 @@ struct DemCoefficients {
     double px, py;            // g / (s^2 (1 + z_x^2)), g / (s^2 (1 + z_y^2))
     double gn;                // g / s, the load without curvature
     double normal_thickness;  // 1 / s
+    double gn_nt;             // g / s^2 = gn * normal_thickness, the load on a bed-normal depth
 };
 
 // Inline, so that a kernel's unused coefficients cost nothing.
+//
+// One division and one root for all of them: the reciprocal of s^2 (1 + z_x^2)
+// (1 + z_y^2) gives p_x, p_y and 1 / s^2 as products, and 1 / s is the root of 1 / s^2.
+// The row kernels compute these for every cell at every pass, and on processors whose
+// divider is slow next to their multipliers (Zen 4: 3.3 G divisions and 1.8 G roots per
+// second and core, 9.7 G multiplications) the advection's pressure stage waited for it:
+// five divisions and two roots per cell before (docs/performance.md, "The DEM frame's
+// coefficients with one division"). Each value is within a few ulps of its quotient.
+// Finite for slopes below 1e77 in magnitude (the product in the divisor overflows
+// beyond): any terrain, whose void markers the DEM reader refuses.
 [[nodiscard]] inline DemCoefficients dem_coefficients(double zx, double zy, double gravity) noexcept {
-    const double s2 = 1.0 + zx * zx + zy * zy;
-    const double s = std::sqrt(s2);
-    return {-gravity * zx / s2,
-            -gravity * zy / s2,
-            gravity / (s2 * (1.0 + zx * zx)),
-            gravity / (s2 * (1.0 + zy * zy)),
-            gravity / s,
-            1.0 / s};
+    const double a = 1.0 + zx * zx, b = 1.0 + zy * zy;
+    const double s2 = a + zy * zy;
+    const double ab = a * b;
+    const double r = 1.0 / (s2 * ab);
+    const double inv_s2 = ab * r;
+    const double nt = std::sqrt(inv_s2);
+    return {-gravity * zx * inv_s2,
+            -gravity * zy * inv_s2,
+            gravity * b * r,
+            gravity * a * r,
+            gravity * nt,
+            nt,
+            gravity * inv_s2};
 }
 
 }  // namespace avalanche
