@@ -37,6 +37,9 @@ sub-step, `h_min = 1e-5 x` the deepest initial cell, g = 9.81 m/s^2.
 | RigidBlock.CentroidAcceleration | relative error of mean acceleration; of mean velocity | 1e-3; 2e-5 | <= 1.9e-4; <= 9.4e-6 |
 | RigidBlock.UniformLayer... | h, hu, hv after 500 steps | bitwise equal | equal |
 | RigidBlock.GentlePileCreep (30 s) | edge move; variance radius; speed | 6 m; WAF 2.6 m, Godunov 8 m; 0.03 m/s | 1.5-4 m; WAF 0.2-0.7 m, Godunov 2.8-3.7 m; <= 0.005 m/s |
+| RestFaces.GentlePileStaysExactlyAtRest (`numerics.rest_faces`, 30 s) | edge move; variance radius; speed, both schemes, splittings and models | == 0 each | 0 |
+| RestFaces.SteepPileCollapsesToTheCoulombLimitAndStays | front at 1 s against the default; relative mass error; steepest deposit step; deposit 12 -> 15 s | 0.125 m (half a cell); 1e-12; < tan(delta) = 0.364; bitwise equal | same cell; < 1e-15; 0.33 (WAF), 0.36 (Godunov); equal |
+| RestFaces.FlowWithoutCellsAtRestIsUnchanged; ...ResumedFromACheckpoint...; ...OneTwoAndThreeThreads... | similarity cap; resumed state; state and flags on 1, 2, 3 threads | bitwise equal | equal |
 | Conservation.* | relative mass error; min h; mirror asymmetry | 1e-12; >= 0; == 0 | <= 1.6e-15; 0; 0 |
 | Convergence.SmoothGodunovIsFirstOrder | observed order | finest pair [0.8, 1.3], every pair > 0.7 | 0.76-0.95 (finest 0.87, 0.95) |
 | Convergence.SmoothWafIsSecondOrder | observed order | [1.6, 2.4] | 1.94-2.02 |
@@ -109,6 +112,19 @@ slope <= 0.08 < tan(delta)/k_pass = 0.106) on a flat bed, delta = 20 deg, at res
 (MODEL.md 2.4): the HLL mass flux between two cells at rest is -a/2 (h_R - h_L),
 a numerical diffusion of depth that friction cannot stop, and the second
 advection half-step accelerates the pile before friction acts again.
+)";
+
+inline constexpr const char* kCreepRestFacesText = R"(
+With `numerics.rest_faces` (docs/numerics.md, "Piles at rest") every face of the pile
+is held (its steepest surface step, 0.08, gives a driving of at most
+k_pass g 0.08 = 2.7 m/s², below tan(delta) g = 3.6 m/s²) and the pile stays exactly as
+released (`RestFaces.GentlePileStaysExactlyAtRest`). A steep pile (R = 4 m, H = 2 m,
+surface slope up to 1.0; isotropic, delta = 20 deg, 0.25 m cells, walls) collapses with
+the option as without it (front at the 1 mm level at 1 s: 6.03 m WAF, 6.43 m Godunov,
+the same cell with and without), and by 12 s every cell is at rest; its deposit's
+steepest step between wet cells is then 0.33 (WAF) and 0.36 (Godunov), below
+tan(delta) = 0.364, and it stays put to the bit. Without the option the front creeps
+on: at 2 s it is 0.05 m (WAF) and 0.25 m (Godunov) further, at 3 s 0.15 m and 0.49 m.
 )";
 
 inline constexpr const char* kConservationText = R"(
@@ -282,6 +298,35 @@ inline constexpr const char* kFindingsText = R"(
    in the third digit at most. Also tried, for Godunov: counting compressions below the
    rest speed (or ten times it) as extending, with either confirmation: E1 at 0.0125 m
    0.20 and 5.8e-2, not a fix.
+   **One level further, 0.00625 m (2026-12-04, seventh session; measured with a scratch
+   test, not kept):** Godunov's default, L S L at Courant 0.2, stalls there too: E1
+   1.86e-2, 9.6e-3, 5.0e-3, **5.4e-3** at dx 0.05 .. 0.00625 m (L_x 5.842 m against
+   5.821); S L S at Courant 0.2 rises: 1.7e-2, 9.1e-3, 8.9e-3, **1.4e-2**. WAF (L S L,
+   0.2) keeps converging: 7.6e-5 at 0.0125 m, 2.9e-5 at 0.00625 m. What the stalls have
+   in common, counted at every step: **passive cells inside the body** (depth above
+   3 cm, where the exact solution is active everywhere): on average 1.2 per step in
+   both stalled runs (L S L at 0.00625 m, S L S at 0.0125 m), 0.1-0.4 in the runs that
+   converge, none in WAF's. The passive cells at the two thin edges (depth below 3 cm;
+   the smeared tip moves slower than the body behind it, the smeared tail faster than
+   the body ahead) are there at every cell size and do not decide it. In the stalled
+   runs the error sits in the body (S L S at 0.0125 m: 5.7e-3 of its 8.9e-3 in the
+   middle 80 % of the cap's length, against 2.7e-3 of 5.0e-3 for L S L), a smooth depth
+   error of +-4 mm with velocity wiggles of 1e-2 m/s, which exceed the exact velocity
+   difference across a cell there (L'/L dx, 3e-3 m/s at 0.0125 m). The kick of a
+   regime flip scales with the advection's Courant number and not with the cell size
+   (docs/numerics.md, advection step 2), so a first-order profile's wiggles decide
+   regimes on fine enough cells at any Courant number; at 0.2 per advection (S L S)
+   one level sooner than at 0.1 (L S L). This is also why Godunov keeps L S L
+   (docs/performance.md, "Godunov advecting once per step"). Where the body's passive
+   cells come from (S L S, 0.0125 m, positions every 50 steps): from t = 0.25 s single
+   passive cells at depths of 0.3-0.5 m, first near the rear edge, then further forward
+   at about 10 m/s (a compression pulse travelling downslope through the cap, its
+   passive cell making it stronger), until 1.3 s; after that only cells of 3-5 cm at
+   the edges. Tried, not kept: a compression counted only when confirmed in two
+   advections in a row (a pending bit per direction in the regime flags, first-order
+   scheme only): L S L 5.4e-3 -> 4.5e-3 at 0.00625 m, S L S 8.9e-3 -> 8.6e-3 at 0.0125 m
+   and 1.4e-2 -> 1.1e-2 at 0.00625 m, with as many passive cells in the body: the
+   compressions last longer than an advection. Open.
 3. **Open edges with SH:** ghost cells copy the edge cell, so their du/dx = 0;
    while that counted as passive, an outflow that is subcritical for k_pass
    reflected (seen with the smooth case on [-6, 6] m). A vanishing difference now
@@ -291,7 +336,7 @@ inline constexpr const char* kFindingsText = R"(
 5. **Superbee** now converges on the dam break at order ~1.0 like the other
    limiters (it did not with the min(psi_h, psi_q) limiter).
 6. **Creep.** The gentle pile's edge moves 1.5-2 m (WAF) to 4 m (Godunov) in 30 s, its
-   variance radius grows by 0.2-0.7 m (WAF) to 2.8-3.7 m (Godunov) (table above); a well-balanced Coulomb treatment (MODEL.md 2.4) would remove it.
+   variance radius grows by 0.2-0.7 m (WAF) to 2.8-3.7 m (Godunov) (table above); a well-balanced Coulomb treatment (MODEL.md 2.4) would remove it. Since 2026-12-04 `numerics.rest_faces` (opt-in) does: the pile does not move at all with it.
    Since 2026-12-02 (third session) velocities within the rest speed tan(delta) g tau / 2
    count as equal for the Savage-Hutter regime (docs/numerics.md, advection step 2): the
    Savage-Hutter pile creeps less (WAF edge 2.00 -> 1.50 m, variance radius 0.32 -> 0.23
