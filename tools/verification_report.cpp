@@ -137,7 +137,8 @@ void creep_table(std::ostream& out) {
     // largest of each measure (RestFaces.GentlePileStaysExactlyAtRest asserts zeros).
     double edge = 0.0, radius = 0.0, speed = 0.0;
     for (const Variant& v : {kVariants[0], kVariants[1]})
-        for (EarthPressureModel m : {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter})
+        for (EarthPressureModel m :
+             {EarthPressureModel::isotropic, EarthPressureModel::savage_hutter})
             for (Splitting sp : {Splitting::lsl, Splitting::sls}) {
                 NumericsParams n = numerics(v);
                 n.splitting = sp;

@@ -189,7 +189,7 @@ TEST(DemFrame, UniformPlaneAccelerationIsSlopeConsistent) {
 }
 
 TEST(DemFrame, CoefficientsAreTheirQuotientsToAFewUlps) {
-    // dem_coefficients computes its six coefficients with one division and one root
+    // dem_coefficients computes its coefficients with one division and one root
     // (products of 1 / (s^2 (1 + z_x^2) (1 + z_y^2)) and the root of 1 / s^2), not as the
     // quotients that define them (docs/theory.md, "DEM frame"). Against those quotients
     // in extended precision, over slopes from flat to 89.4 deg (|z| up to 100: a 100 m
@@ -205,17 +205,20 @@ TEST(DemFrame, CoefficientsAreTheirQuotientsToAFewUlps) {
         const DemCoefficients c = dem_coefficients(zx, zy, kG);
         const long double x = zx, y = zy, g = kG;
         const long double s2 = 1.0L + x * x + y * y, s = std::sqrt(s2);
-        const long double exact[6] = {-g * x / s2, -g * y / s2, g / (s2 * (1.0L + x * x)),
-                                      g / (s2 * (1.0L + y * y)), g / s, 1.0L / s};
+        const long double exact[6] = {
+            -g * x / s2, -g * y / s2, g / (s2 * (1.0L + x * x)), g / (s2 * (1.0L + y * y)),
+            g / s,       1.0L / s};
         const double got[6] = {c.ax, c.ay, c.px, c.py, c.gn, c.normal_thickness};
         for (int k = 0; k < 6; ++k) {
             const long double err = std::abs(got[k] - exact[k]);
             ASSERT_LE(err, kUlps * std::abs(exact[k]))
                 << "coefficient " << k << " of slopes (" << zx << ", " << zy << ")";
-            if (exact[k] != 0.0L) worst = std::max(worst, static_cast<double>(err / std::abs(exact[k])));
+            if (exact[k] != 0.0L)
+                worst = std::max(worst, static_cast<double>(err / std::abs(exact[k])));
         }
         const long double gn_nt = g / s2;
-        ASSERT_LE(std::abs(c.gn_nt - gn_nt), kUlps * gn_nt) << "g / s^2 of (" << zx << ", " << zy << ")";
+        ASSERT_LE(std::abs(c.gn_nt - gn_nt), kUlps * gn_nt)
+            << "g / s^2 of (" << zx << ", " << zy << ")";
     }
     std::printf("worst relative error %.3g (%.1f ulps)\n", worst,
                 worst / std::numeric_limits<double>::epsilon());
