@@ -24,9 +24,10 @@ struct DemCoefficients {
 // (1 + z_y^2) gives p_x, p_y and 1 / s^2 as products, and 1 / s is the root of 1 / s^2.
 // The row kernels compute these for every cell at every pass, and on processors whose
 // divider is slow next to their multipliers (Zen 4: 3.3 G divisions and 1.8 G roots per
-// second and core, 9.7 G multiplications) the advection's pressure stage waited for it:
-// five divisions and two roots per cell before (docs/performance.md, "The DEM frame's
-// coefficients with one division"). Each value is within a few ulps of its quotient.
+// second and core, 9.7 G multiplications) the advection's pressure stage waited for it.
+// The quotients took six divisions and a root, of which the pressure stage used four
+// and the root (docs/performance.md, "The DEM frame's coefficients with one division").
+// Each value is within a few ulps of its quotient.
 // Finite for slopes below 1e77 in magnitude (the product in the divisor overflows
 // beyond): any terrain, whose void markers the DEM reader refuses.
 [[nodiscard]] inline DemCoefficients dem_coefficients(double zx, double zy, double gravity) noexcept {
