@@ -1,7 +1,9 @@
 #include "avalanche/numerics/face_flux_rows.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -72,6 +74,13 @@ AVALANCHE_INLINE double psi_of(double r) {
     return r <= 0.0 ? 0.0 : p;  // limiter_psi (limiters.hpp)
 }
 
+// x sign(y): x with its sign bit flipped where y's is set (exact, and no comparison).
+AVALANCHE_INLINE double times_sign_of(double x, double y) {
+    constexpr std::uint64_t kSign = std::uint64_t{1} << 63;
+    return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) ^
+                                 (std::bit_cast<std::uint64_t>(y) & kSign));
+}
+
 // jump_ratio (limiters.hpp) as selections.
 AVALANCHE_INLINE double ratio_of(double d_upwind, double d_local, double tiny) {
     const double flat = std::abs(d_upwind) <= tiny ? 1.0 : 0.0;
@@ -83,27 +92,44 @@ AVALANCHE_INLINE double ratio_of(double d_upwind, double d_local, double tiny) {
 template <Limiter L>
 AVALANCHE_INLINE double psi_of_jumps(double d_upwind, double d_local, double tiny) {
     if constexpr (L == Limiter::van_leer) {
-        const double flat = std::abs(d_upwind) <= tiny ? 1.0 : 0.0;
-        const bool positive =
-            ((d_upwind > 0.0) & (d_local > 0.0)) | ((d_upwind < 0.0) & (d_local < 0.0));
-        const double p = 2.0 * d_upwind / (d_local + d_upwind);
-        return std::abs(d_local) <= tiny ? flat : (positive ? p : 0.0);
+        // 2 d_up / (d_local + d_up) where the jumps share a sign, else 0, as
+        // (sign(d_local) d_up + |d_up|) / (|d_local| + |d_up|): the numerator is 2 |d_up|
+        // or exactly 0, the same bits without the four sign tests and their masks (the
+        // WAF face's time follows its instruction count: docs/performance.md).
+        const double up_abs = std::abs(d_upwind), local_abs = std::abs(d_local);
+        const double flat = up_abs <= tiny ? 1.0 : 0.0;
+        const double p = (times_sign_of(d_upwind, d_local) + up_abs) / (local_abs + up_abs);
+        return local_abs <= tiny ? flat : p;
     } else {
         return psi_of<L>(ratio_of(d_upwind, d_local, tiny));
     }
 }
 
-// The WAF weight 1/2 sign(c) A of one wave (waf_flux, riemann_hllc.hpp).
-AVALANCHE_INLINE double waf_weight(double s, double dt_over_dx, double psi) {
-    const double c = std::clamp(s * dt_over_dx, -1.0, 1.0);
-    const double a = 1.0 - (1.0 - std::abs(c)) * psi;
-    return c > 0.0 ? 0.5 * a : (c < 0.0 ? -0.5 * a : 0.0);
+// The WAF weight 1/2 sign(c) A of one wave (waf_flux, riemann_hllc.hpp), from
+// c / 2 = s (dt / 2dx) clamped to [-1/2, 1/2]: 1/2 A = 1/2 - (1/2 - |c / 2|) psi, the
+// same bits as halving A (halving is exact away from subnormals). The clamp acts on
+// |c / 2| alone (one minimum) and the sign is c's bit: one comparison instead of four
+// and their selections.
+AVALANCHE_INLINE double waf_weight(double s, double half_dt_over_dx, double psi) {
+    const double half_c = s * half_dt_over_dx;
+    const double half_c_abs = std::min(std::abs(half_c), 0.5);
+    const double half_a = 0.5 - (0.5 - half_c_abs) * psi;
+    return half_c == 0.0 ? 0.0 : times_sign_of(half_a, half_c);
 }
 
 AVALANCHE_INLINE double waf_component(double f0, double f1, double f2, double f3,
                                       const double w[3]) {
     const double outer = w[0] * (f1 - f0) + w[2] * (f3 - f2);
     return 0.5 * (f0 + f3) - outer - w[1] * (f2 - f1);
+}
+
+// waf_component(f0, f_star, f_star, f3, w) for a component that does not jump across
+// the contact (h, q_n): w[1] (f_star - f_star) is a zero with w[1]'s sign (f_star is
+// finite here or the whole flux is NaN either way), subtracted as such to keep the bits.
+AVALANCHE_INLINE double waf_component_no_contact(double f0, double f_star, double f3,
+                                                 const double w[3]) {
+    const double outer = w[0] * (f_star - f0) + w[2] * (f3 - f_star);
+    return 0.5 * (f0 + f3) - outer - times_sign_of(0.0, w[1]);
 }
 
 // waf_face_flux (waf_face.hpp) for one face with all four stencil cells at least
@@ -115,8 +141,7 @@ template <Limiter L>
 AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, double h_l, double qn_l,
                                    double ul, double vl, double h_r, double qn_r, double ur,
                                    double vr, double h_rr, double qn_rr, double v_rr, double c_l,
-                                   double c_r, double al, double ar, double h_dry,
-                                   double dt_over_dx) {
+                                   double c_r, double al, double ar, double dt_over_dx) {
     constexpr double kFlat = 1e-12;  // waf_face_flux (waf_face.hpp)
     const double s_l = std::min(ul - al, ur - ar);
     const double s_r = std::max(ul + al, ur + ar);
@@ -138,17 +163,23 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, doubl
     const double dh_loc = h_r - h_l, dq_loc = qn_r - qn_l;
     const double dh_lup = h_l - h_ll, dq_lup = qn_l - qn_ll;  // the face upwind on the left
     const double dh_rup = h_rr - h_r, dq_rup = qn_rr - qn_r;  // the face upwind on the right
+    // The upwind face's jumps are selected before they are weighted: one product per
+    // wave instead of two.
     const bool from_left_1 = s_l >= 0.0;
     const double loc_1 = up_l * dh_loc - dq_loc;
-    const double up_1 = from_left_1 ? up_l * dh_lup - dq_lup : up_l * dh_rup - dq_rup;
+    const double dh_up_1 = from_left_1 ? dh_lup : dh_rup, dq_up_1 = from_left_1 ? dq_lup : dq_rup;
+    const double up_1 = up_l * dh_up_1 - dq_up_1;
     const bool from_left_3 = s_r >= 0.0;
     const double loc_3 = dq_loc - up_r * dh_loc;
-    const double up_3 = from_left_3 ? dq_lup - up_r * dh_lup : dq_rup - up_r * dh_rup;
+    const double dh_up_3 = from_left_3 ? dh_lup : dh_rup, dq_up_3 = from_left_3 ? dq_lup : dq_rup;
+    const double up_3 = dq_up_3 - up_r * dh_up_3;
     // Shear wave: the jump of the transverse velocity.
     const bool from_left_2 = s_star >= 0.0;
-    // The upwind cell's transverse velocity (of LL or RR).
-    const double h_up = from_left_2 ? h_ll : h_rr, v_up_any = from_left_2 ? v_ll : v_rr;
-    const double v_up = is_wet(h_up, h_dry) ? v_up_any : 0.0;
+    // The upwind cell's transverse velocity (of LL or RR): the scalar kernel's
+    // velocity_or_zero is the quotient itself on every face this flux is kept for (all
+    // four stencil cells at least h_dry > 0 thick; the callers select the first-order
+    // flux on the others).
+    const double v_up = from_left_2 ? v_ll : v_rr;
     const double dv_loc = vr - vl;
     const double dv_up = from_left_2 ? vl - v_up : v_up - vr;
     const double tiny_v = kFlat * std::max(std::abs(vl), std::abs(vr));
@@ -156,9 +187,12 @@ AVALANCHE_INLINE FaceFlux waf_lane(double h_ll, double qn_ll, double v_ll, doubl
     const double psi1 = psi_of_jumps<L>(up_1, loc_1, tiny_alpha);
     const double psi2 = psi_of_jumps<L>(dv_up, dv_loc, tiny_v);
     const double psi3 = psi_of_jumps<L>(up_3, loc_3, tiny_alpha);
-    const double w[3] = {waf_weight(s_l, dt_over_dx, psi1), waf_weight(s_star, dt_over_dx, psi2),
-                         waf_weight(s_r, dt_over_dx, psi3)};
-    return {waf_component(f0.h, fh, fh, f3.h, w), waf_component(f0.qn, fq, fq, f3.qn, w),
+    const double half_dt_over_dx = 0.5 * dt_over_dx;  // loop-invariant: hoisted
+    const double w[3] = {waf_weight(s_l, half_dt_over_dx, psi1),
+                         waf_weight(s_star, half_dt_over_dx, psi2),
+                         waf_weight(s_r, half_dt_over_dx, psi3)};
+    return {waf_component_no_contact(f0.h, fh, f3.h, w),
+            waf_component_no_contact(f0.qn, fq, f3.qn, w),
             waf_component(f0.qt, f1t, f2t, f3.qt, w)};
 }
 
@@ -210,10 +244,9 @@ AVALANCHE_INLINE void waf_row(const FaceRowInput& in, const FaceRowOutput& out, 
     for (int i = 0; i < n; ++i) {
         const double hll = h[i - 2 * off], hl = h[i - off], hr = h[i], hrr = h[i + off];
         const double ul = un[i - off], vl = ut[i - off], ur = un[i], vr = ut[i];
-        const FaceFlux w =
-            waf_lane<L>(hll, qn[i - 2 * off], ut[i - 2 * off], hl, qn[i - off], ul, vl, hr, qn[i],
-                        ur, vr, hrr, qn[i + off], ut[i + off], c[i - off], c[i], a[i - off],
-                        a[i], h_dry, dt_over_dx);
+        const FaceFlux w = waf_lane<L>(hll, qn[i - 2 * off], ut[i - 2 * off], hl, qn[i - off], ul,
+                                       vl, hr, qn[i], ur, vr, hrr, qn[i + off], ut[i + off],
+                                       c[i - off], c[i], a[i - off], a[i], dt_over_dx);
         if constexpr (Fronts) {
             // At a wet/dry front (a stencil cell thinner than h_dry) the first-order flux.
             const bool front = (hll < h_dry) | (hl < h_dry) | (hr < h_dry) | (hrr < h_dry);

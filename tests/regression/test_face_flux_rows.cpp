@@ -182,6 +182,51 @@ TEST(FaceFluxRows, WafRowIsBitwiseTheScalarWafFaceFluxForEveryLimiter) {
     }
 }
 
+// States from a few values, so that faces meet the exact cases random states miss: a
+// wave at rest (s = 0 exactly: the WAF weight's own case, a zero of either sign), a
+// mirror-symmetric face (contact at rest), upwind and local jumps exactly equal, zero
+// or of opposite signs (the limiter's cases), and negative zeros among the momenta.
+TEST(FaceFluxRows, WafRowIsBitwiseTheScalarWafFaceFluxOnRestingAndSymmetricStates) {
+    std::mt19937_64 rng(20261206);
+    const double h_dry = 1e-3;
+    const double depths[] = {1.0, 2.0}, speeds[] = {-2.0, -1.5, -0.0, 0.0, 1.5, 2.0};
+    std::uniform_int_distribution<int> pick_depth(0, 1), pick_speed(0, 5);
+    for (const Limiter lim :
+         {Limiter::superbee, Limiter::van_leer, Limiter::van_albada, Limiter::minmod}) {
+        long faces = 0, contact_at_rest = 0, outer_at_rest = 0;
+        for (int trial = 0; trial < 20; ++trial) {
+            Block b = random_block(rng, 37 + trial % 9, 7, h_dry, true);
+            for (std::size_t k = 0; k < b.h.size(); ++k) {
+                b.h[k] = depths[pick_depth(rng)];
+                b.qn[k] = b.h[k] * speeds[pick_speed(rng)];
+                b.qt[k] = b.h[k] * speeds[pick_speed(rng)];
+                b.c[k] = 4.0;  // celerities 2 and 2 sqrt(2): u = +-2 at h = 1 is critical
+                b.un[k] = b.qn[k] / b.h[k];
+                b.ut[k] = b.qt[k] / b.h[k];
+            }
+            celerity_row(b.h.data(), b.c.data(), h_dry, b.a.data(), static_cast<int>(b.h.size()));
+            const double dt_dx = 0.1;
+            faces += compare(
+                b,
+                [&](const FaceRowInput& in, const FaceRowOutput& out, int n) {
+                    waf_face_row(in, out, n, h_dry, dt_dx, lim);
+                },
+                [&](const Conserved& qll, const Conserved& ql, const Conserved& qr,
+                    const Conserved& qrr, double cl, double cr) {
+                    const HllcFan fan = hllc_fan(ql, qr, cl, cr, h_dry);
+                    contact_at_rest += fan.s_star == 0.0 ? 1 : 0;
+                    outer_at_rest += fan.s_l == 0.0 || fan.s_r == 0.0 ? 1 : 0;
+                    return waf_face_flux(qll, ql, qr, qrr, cl, cr, h_dry, dt_dx, lim);
+                });
+            if (HasFailure()) return;
+        }
+        // The cases were met: faces with the contact at rest, and faces with an outer
+        // wave at rest (a critical side, u - a = 0 exactly, and a supercritical other).
+        EXPECT_GT(contact_at_rest, faces / 20) << "limiter " << static_cast<int>(lim);
+        EXPECT_GT(outer_at_rest, 20) << "limiter " << static_cast<int>(lim);
+    }
+}
+
 // Long rows wet but for a few thin cells: runs of faces without a front longer than the
 // kernel's blocks of 16, ending anywhere within a block.
 TEST(FaceFluxRows, WafRowWithScatteredFrontsIsBitwiseTheScalarWafFaceFlux) {

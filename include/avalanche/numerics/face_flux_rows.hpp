@@ -4,9 +4,11 @@
 // instructions of a fully wet step) call these once per row.
 //
 // Every value is computed by the same expressions, in the same order, as the scalar
-// kernels of riemann_hllc.hpp and the limiter code of limiters.hpp; the branches of
-// the scalar code (wet/dry sides, fan region, wet/dry front, wave direction) become
-// selections between values computed for every face. IEEE arithmetic is exact per
+// kernels of riemann_hllc.hpp and the limiter code of limiters.hpp, or by rearrangements
+// that are exact in IEEE arithmetic (a factor 1/2 moved, a sign taken from a sign bit;
+// face_flux_rows.cpp says where); the branches of the scalar code (wet/dry sides, fan
+// region, wet/dry front, wave direction) become selections between values computed for
+// every face. IEEE arithmetic is exact per
 // operation and the core layer is built without FMA contraction, so the results are
 // bitwise those of the scalar kernels, whatever vector width the machine has
 // (tests/regression/test_face_flux_rows.cpp).
