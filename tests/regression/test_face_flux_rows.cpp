@@ -77,6 +77,15 @@ Block random_block(std::mt19937_64& rng, int width, int rows, double h_dry, bool
     return b;
 }
 
+// Cell k at depth h and at rest, its quotients 0 / h as the stepper passes them (NaN
+// where h = 0); its celerity is left to the caller's celerity_row.
+void set_at_rest(Block& b, std::size_t k, double h) {
+    b.h[k] = h;
+    b.qn[k] = b.qt[k] = 0.0;
+    b.un[k] = b.qn[k] / h;
+    b.ut[k] = b.qt[k] / h;
+}
+
 Conserved at(const Block& b, std::ptrdiff_t k) { return {b.h[k], b.qn[k], b.qt[k]}; }
 
 // Compares one kernel with its scalar reference on every face of the block's rows,
@@ -253,10 +262,7 @@ TEST(FaceFluxRows, WafRowWithScatteredFrontsIsBitwiseTheScalarWafFaceFlux) {
         Block b = random_block(rng, 150 + 7 * trial, 5, h_dry, true);
         std::uniform_int_distribution<std::size_t> cell(0, b.h.size() - 1);
         for (int k = 0; k < 6; ++k) {  // a few thin cells, each a front for its stencils
-            const std::size_t i = cell(rng);
-            b.h[i] = 0.5 * h_dry;
-            b.qn[i] = b.qt[i] = 0.0;
-            b.un[i] = b.ut[i] = 0.0;
+            set_at_rest(b, cell(rng), 0.5 * h_dry);
         }
         celerity_row(b.h.data(), b.c.data(), h_dry, b.a.data(), static_cast<int>(b.h.size()));
         faces += compare_waf_van_leer(
@@ -288,12 +294,9 @@ TEST(FaceFluxRows, RowsWithLongDryStretchesAreBitwiseTheScalarFluxes) {
                 const int end = std::min(i + length(rng), b.width);
                 const int k = kind(rng);  // empty, thin, or a mix of both
                 for (; i < end; ++i) {
-                    const std::size_t c = static_cast<std::size_t>(r) * b.width + i;
                     const bool empty = k == 0 || (k == 2 && i % 3 == 0);
-                    b.h[c] = empty ? 0.0 : 0.5 * h_dry;
-                    b.qn[c] = b.qt[c] = 0.0;
-                    b.un[c] = b.qn[c] / b.h[c];  // NaN on the empty cells, as the stepper has
-                    b.ut[c] = b.qt[c] / b.h[c];
+                    set_at_rest(b, static_cast<std::size_t>(r) * b.width + i,
+                                empty ? 0.0 : 0.5 * h_dry);
                 }
                 i += length(rng);  // a wet stretch
             }

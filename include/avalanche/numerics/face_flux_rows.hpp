@@ -8,10 +8,10 @@
 // that are exact in IEEE arithmetic (a factor 1/2 moved, a sign taken from a sign bit;
 // face_flux_rows.cpp says where); the branches of the scalar code (wet/dry sides, fan
 // region, wet/dry front, wave direction) become selections between values computed for
-// every face. IEEE arithmetic is exact per
-// operation and the core layer is built without FMA contraction, so the results are
-// bitwise those of the scalar kernels, whatever vector width the machine has
-// (tests/regression/test_face_flux_rows.cpp).
+// every face, and faces between two dry cells get the scalar kernels' zero flux written
+// without computing it. IEEE arithmetic is exact per operation and the core layer is
+// built without FMA contraction, so the results are bitwise those of the scalar
+// kernels, whatever vector width the machine has (tests/regression/test_face_flux_rows.cpp).
 //
 // Layout: one row of n faces; the pointers address the cell right of (above) the
 // first face, and face m lies between the cells m - off and m of them, where off is
