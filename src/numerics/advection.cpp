@@ -613,6 +613,7 @@ void Stepper::advect(State& s, double tau) {
     const ActiveBox b = box_;
     if (b.empty()) {
         thin_layer_velocities(s);
+        films_settled_ = true;
         return;
     }
     const int threads = threaded_ ? omp_get_max_threads() : 1;
@@ -783,7 +784,7 @@ void Stepper::advect(State& s, double tau) {
     outflow_volume_ += out;
     // The whole box would have given every empty cell of its per-cell stage the regime
     // at start (regime_row); the bands computed those of their own rows and columns.
-    if (regimes && bands_.size() > 1) {
+    if (regimes && !(bands_.size() == 1 && bands_.front() == b)) {
         const ActiveBox& pc = per_cell;
         const RegimeFlags at_start = stored_regime(kRegimeAtStart);
         std::size_t q = 0;  // the band that stores row r's regimes (keep_regime_row)
@@ -801,6 +802,7 @@ void Stepper::advect(State& s, double tau) {
     }
     fill_ghosts_near(s, box_);
     thin_layer_velocities(s);
+    films_settled_ = true;  // every film of the bands without a wet neighbour at rest
 }
 
 }  // namespace avalanche

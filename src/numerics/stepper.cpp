@@ -7,6 +7,7 @@
 #include "avalanche/core/error.hpp"
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/energy_cap.hpp"
+#include "avalanche/numerics/face_flux_rows.hpp"
 
 namespace avalanche {
 
@@ -87,8 +88,19 @@ void Stepper::shrink_box_to_wet(const State& s, const ActiveBox& search) {
         if (first == search.i1) continue;
         int last = search.i1 - 1;
         while (!(h[last] > 0.0)) --last;
-        row_first_[static_cast<std::size_t>(j)] = first;
-        row_last_[static_cast<std::size_t>(j)] = last;
+        // The bands' cells: those of material, or once the films are settled those at
+        // least h_min thick, searched within the material (a whole row of films at
+        // most, a few per cent of the work those films would take).
+        int work_first = first, work_last = last;
+        if (films_settled_) {
+            while (work_first <= last && !is_wet(h[work_first], h_min_)) ++work_first;
+            if (work_first <= last)
+                while (!is_wet(h[work_last], h_min_)) --work_last;
+        }
+        if (work_first <= last) {
+            row_first_[static_cast<std::size_t>(j)] = work_first;
+            row_last_[static_cast<std::size_t>(j)] = work_last;
+        }
         wet.i0 = std::min(wet.i0, first);
         wet.i1 = std::max(wet.i1, last + 1);
         wet.j0 = std::min(wet.j0, j);
@@ -114,6 +126,15 @@ void Stepper::shrink_box_to_wet(const State& s, const ActiveBox& search) {
 // reads is empty (h = hu = hv = 0), its fluxes are zero and its update gives it back
 // (its regime aside, which advect() resets as the whole box would). So the bands
 // give the whole box's result to the bit, whatever their height or number.
+// Once the films are settled (films_settled_), the same holds with "at least h_min
+// thick" for "wet": a film farther than the margin from every such cell, at rest with
+// hu = hv = +0, lies between faces that are dry on both sides (zero fluxes) through
+// both advections of an L S L step, whose thick cells move one cell each; the friction
+// stage the bands skip would give it momentum that the second advection's update
+// (thin cells keep none) and its thin-layer rule (no wet neighbour: +0) take away
+// again; its regime is the regime at start (a film's velocity differences extend);
+// and no kernel of the bands reads its momentum but through a dry face or a zero
+// wetness weight. So the step gives it back unchanged, as the whole box does.
 void Stepper::make_bands() {
     bands_.clear();
     const ActiveBox b = box_;
@@ -175,6 +196,7 @@ void Stepper::set_held_at_rest(CellVector<HeldFlag> held) {
 void Stepper::reset_active_box(const State& s) { reset_active_box(s, ActiveBox{0, grid_.nx, 0, grid_.ny}); }
 
 void Stepper::reset_active_box(const State& s, const ActiveBox& holding) {
+    films_settled_ = false;  // a state from outside: its films may move
     shrink_box_to_wet(s, holding.clipped(grid_.nx, grid_.ny));
 }
 
@@ -410,6 +432,7 @@ void Stepper::apply_sources(State& s, double dt) {
                              held_.data() + s.h.index(0, j), i0, i1);
     }
     after_sources_ = true;
+    films_settled_ = false;  // the films of the bands were given momentum
 }
 
 }  // namespace avalanche

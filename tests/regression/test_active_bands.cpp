@@ -3,7 +3,10 @@
 // Savage-Hutter regimes of the advection over the whole box, to the bit, on one thread
 // and on two. Two flows on a rough valley, one high on the west side and one low on the
 // east side that leaves through the open north edge, so that the box is much wider
-// than either flow and the bands between them have no columns at all.
+// than either flow and the bands between them have no columns at all. The flows leave
+// films (0 < h < h_min) behind them, which the bands of an L S L step leave out once
+// they are settled (Stepper::films_settled_): with the faces friction holds and without,
+// and under S L S, whose films keep the friction stage's momentum and stay in the bands.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -27,23 +30,39 @@ using avalanche::test::same_bits;
 // A valley falling to the north (+y) at 45 degrees, with a rough surface.
 std::vector<double> rough_valley(const Grid& g) { return avalanche::testing::rough_valley(g, 1.0, 0.001); }
 
+constexpr double kHMin = 1e-4;
+
 struct BandedRun {
     State state;
     double outflow = 0.0;
     CellVector<RegimeFlags> regime;
-    std::size_t most_bands = 0;    // the most bands with columns in one step
-    double band_fraction = 1.0;    // cells of the bands over cells of the box, summed over the steps
+    CellVector<HeldFlag> held;
+    std::size_t most_bands = 0;   // the most bands with columns in one step
+    double band_fraction = 1.0;   // cells of the bands over cells of the box, summed over the steps
+    double films = 0.0;           // films of the box at the steps' starts, summed over the steps
+    double films_left_out = 0.0;  // those of them outside every band
+    int one_narrow_band = 0;      // steps with one band, narrower than the box
 };
 
-BandedRun run(const Grid& g, const TerrainFields& t, bool whole_box, int steps) {
+// Whether cell (i, j) lies in one of the bands.
+bool in_a_band(const std::vector<ActiveBox>& bands, int i, int j) {
+    for (const ActiveBox& b : bands)
+        if (i >= b.i0 && i < b.i1 && j >= b.j0 && j < b.j1) return true;
+    return false;
+}
+
+// With one_flow, only the high one: then the bands are often one, narrower than the box.
+BandedRun run(const Grid& g, const TerrainFields& t, bool whole_box, int steps,
+              const NumericsParams& n = {},  // the defaults: open edges, L S L
+              bool one_flow = false) {
     Field2D h0 = rasterize_release(ParaboloidRelease{{0.25 * g.x_max(), 0.2 * g.y_max()}, 30.0, 3.0}, g);
     const Field2D low = rasterize_release(ParaboloidRelease{{0.75 * g.x_max(), 0.94 * g.y_max()}, 30.0, 3.0}, g);
-    for (int j = 0; j < g.ny; ++j)
+    for (int j = 0; j < g.ny && !one_flow; ++j)
         for (int i = 0; i < g.nx; ++i) h0(i, j) += low(i, j);
-    BandedRun r{state_at_rest(g, h0, t), 0.0, {}, 0, 1.0};
+    BandedRun r;
+    r.state = state_at_rest(g, h0, t);
     const MaterialParams m;  // Savage-Hutter earth pressure: regimes carried
-    const NumericsParams n;  // open edges
-    Stepper stepper(g, t, m, n, 1e-4);
+    Stepper stepper(g, t, m, n, kHMin);
     stepper.set_whole_box_advection(whole_box);
     // Every cell starts passive in both directions, as the cells a flow has left keep
     // the regimes it gave them: the whole box gives its empty cells the regime at
@@ -52,7 +71,17 @@ BandedRun run(const Grid& g, const TerrainFields& t, bool whole_box, int steps) 
     stepper.reset_active_box(r.state);
     double band_cells = 0.0, box_cells = 0.0;
     for (int k = 0; k < steps; ++k) {
+        const State before = r.state;
         stepper.step(r.state, stepper.stable_dt(r.state));
+        // The films at the step's start, and those the step's bands left out.
+        const ActiveBox box = stepper.active_box();
+        for (int j = box.j0; j < box.j1; ++j)
+            for (int i = box.i0; i < box.i1; ++i) {
+                const double h = before.h(i, j);
+                if (!(h > 0.0 && h < kHMin)) continue;
+                r.films += 1.0;
+                r.films_left_out += in_a_band(stepper.bands(), i, j) ? 0.0 : 1.0;
+            }
         std::size_t with_columns = 0;
         for (const ActiveBox& b : stepper.bands()) {
             band_cells += static_cast<double>(b.cells());
@@ -60,9 +89,13 @@ BandedRun run(const Grid& g, const TerrainFields& t, bool whole_box, int steps) 
         }
         box_cells += static_cast<double>(stepper.active_box().cells());
         r.most_bands = std::max(r.most_bands, with_columns);
+        const std::vector<ActiveBox>& bands = stepper.bands();
+        if (bands.size() == 1 && bands.front().i1 - bands.front().i0 < box.i1 - box.i0)
+            ++r.one_narrow_band;
     }
     r.outflow = stepper.outflow_volume();
     r.regime = stepper.regime();
+    r.held = stepper.held_at_rest();
     r.band_fraction = band_cells / box_cells;
     return r;
 }
@@ -74,6 +107,8 @@ void expect_same_run(const BandedRun& a, const BandedRun& b) {
     EXPECT_EQ(a.outflow, b.outflow);
     ASSERT_EQ(a.regime.size(), b.regime.size());
     EXPECT_EQ(std::memcmp(a.regime.data(), b.regime.data(), a.regime.size() * sizeof(RegimeFlags)), 0);
+    ASSERT_EQ(a.held.size(), b.held.size());
+    EXPECT_EQ(std::memcmp(a.held.data(), b.held.data(), a.held.size() * sizeof(HeldFlag)), 0);
 }
 
 TEST(ActiveBands, GiveTheWholeBoxsStateOutflowAndRegimesToTheBit) {
@@ -93,6 +128,40 @@ TEST(ActiveBands, GiveTheWholeBoxsStateOutflowAndRegimesToTheBit) {
         EXPECT_EQ(whole.most_bands, 1u);
         EXPECT_GE(bands.most_bands, 3u);
         EXPECT_LT(bands.band_fraction, 0.7);
+        // Films were left out of the bands, a good part of those the flows left.
+        EXPECT_EQ(whole.films_left_out, 0.0);
+        EXPECT_GT(bands.films_left_out, 0.1 * bands.films);
+    }
+    omp_set_num_threads(threads);
+}
+
+// The same with the faces friction holds at rest, whose flags (held_at_rest) the steps
+// carry too, and under S L S: its steps end with a friction stage, which moves the
+// films on the steep valley, so its bands keep every film (and give the same bits).
+TEST(ActiveBands, LeaveOutOnlySettledFilmsToTheBit) {
+    const Grid g{200, 330, 5.0, 5.0, 0.0, 0.0};
+    const std::vector<double> z = rough_valley(g);
+    const TerrainFields t = dem_terrain(g, z, kG);
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(2);
+    NumericsParams held;
+    held.rest_faces = true;
+    NumericsParams sls;
+    sls.splitting = Splitting::sls;
+    const NumericsParams lsl;
+    for (const NumericsParams& n : {held, sls, lsl}) {
+        const bool one_flow = !n.rest_faces && n.splitting == Splitting::lsl;
+        SCOPED_TRACE(n.rest_faces ? "rest faces" : (one_flow ? "one flow" : "S L S"));
+        const BandedRun whole = run(g, t, true, 260, n, one_flow);
+        const BandedRun bands = run(g, t, false, 260, n, one_flow);
+        expect_same_run(whole, bands);
+        ASSERT_GT(bands.films, 0.0);
+        if (n.splitting == Splitting::sls)
+            EXPECT_EQ(bands.films_left_out, 0.0);
+        else if (one_flow)  // the cells of the box beside the one band get the regime at start
+            EXPECT_GT(bands.one_narrow_band, 10);
+        else
+            EXPECT_GT(bands.films_left_out, 0.1 * bands.films);
     }
     omp_set_num_threads(threads);
 }

@@ -13,6 +13,7 @@ struct ActiveBox {
     int i0 = 0, i1 = 0;  // cells i0 <= i < i1
     int j0 = 0, j1 = 0;  // cells j0 <= j < j1
 
+    [[nodiscard]] bool operator==(const ActiveBox&) const = default;
     [[nodiscard]] bool empty() const { return i1 <= i0 || j1 <= j0; }
     [[nodiscard]] std::size_t cells() const {
         return empty() ? 0 : static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(j1 - j0);

@@ -279,9 +279,18 @@ class Stepper {
     bool whole_box_advection_ = false;
     bool all_strips_to_first_thread_ = false;
     std::uint64_t strip_steals_ = 0;
-    // Per grid row, the first and last column with h > 0 (last < first: none), set by
-    // shrink_box_to_wet for the rows it searched.
+    // Per grid row, the first and last column of the cells the bands work on (last <
+    // first: none), set by shrink_box_to_wet for the rows it searched: those with h > 0,
+    // or, while films_settled_, those at least h_min thick.
     std::vector<int> row_first_, row_last_;
+    // Whether every film (0 < h < h_min) without a cell at least h_min thick within the
+    // margin is at rest with hu = hv = +0, so that a step of the bands of the thick cells
+    // alone gives the state of the whole box to the bit: an advection's thin-layer rule
+    // last wrote every film of its bands (and the films beyond them were at rest
+    // already). A friction stage (which accelerates films down a slope) or a state set
+    // from outside clears it: an S L S step, which ends with one, and a run's first
+    // step keep the bands of the material (docs/numerics.md, "Active region").
+    bool films_settled_ = false;
     std::vector<StripBuffers> strips_;  // one per thread
     // Rows per strip: the stage buffers of a strip (30 arrays of kStripRows to
     // kStripRows + 8 rows for WAF, StripBuffers::allocate) stay in a core's cache for
