@@ -288,7 +288,10 @@ void Stepper::step(State& s, double dt) {
     shrink_box_to_wet(s, search);
     if (box_.empty()) return;
     if (!budget_set_) set_energy_budget(energy_budget_in(s, wet_box_));
-    threaded_ = box_.cells() >= kMinCellsPerThreadedStep;
+    // The work is the bands' (settled films left out, make_bands), not the box's.
+    std::size_t band_cells = 0;
+    for (const ActiveBox& band : bands_) band_cells += band.cells();
+    threaded_ = band_cells >= kMinCellsPerThreadedStep;
     if (numerics_.splitting == Splitting::lsl) {
         advect(s, 0.5 * dt);
         apply_sources(s, dt);

@@ -79,7 +79,8 @@ class Stepper {
     // Number of cell updates performed (active cells x steps).
     [[nodiscard]] std::uint64_t cell_updates() const { return cell_updates_; }
 
-    // Small active areas run on one thread: a parallel region costs tens of
+    // Small active areas (the cells of the bands, since settled films are left out of
+    // them) run on one thread: a parallel region costs tens of
     // microseconds to wake the team, more than the work of a few thousand cells, and
     // on a shared machine a descheduled thread stalls every region (a 0.5 s test took
     // 10 s on two threads). Results do not depend on it. (Simulation's per-step passes
