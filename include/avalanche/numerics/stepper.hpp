@@ -80,13 +80,13 @@ class Stepper {
     [[nodiscard]] std::uint64_t cell_updates() const { return cell_updates_; }
 
     // Small active areas (the cells of the bands, since settled films are left out of
-    // them) run on one thread: a parallel region costs tens of
-    // microseconds to wake the team, more than the work of a few thousand cells, and
-    // on a shared machine a descheduled thread stalls every region (a 0.5 s test took
-    // 10 s on two threads). Results do not depend on it. (Simulation's per-step passes
-    // use the same threshold.) 4 000 since the strips (a step of 4 000 cells is about
-    // 0.5 ms of work): against 20 000, two threads ran the demo in 8.6-11 s instead of
-    // 15-19 s, the chute 18-20 % and the valley 45-55 % faster (docs/performance.md).
+    // them) run on one thread: a parallel region costs tens of microseconds to wake the
+    // team, more than the work of a few thousand cells, and on a shared machine a
+    // descheduled thread stalls every region (a 0.5 s test took 10 s on two threads).
+    // Results do not depend on it. (Simulation's per-step passes use the same
+    // threshold.) 4 000 since the strips (a step of 4 000 cells is about 0.5 ms of
+    // work): against 20 000, two threads ran the demo in 8.6-11 s instead of 15-19 s,
+    // the chute 18-20 % and the valley 45-55 % faster (docs/performance.md).
     static constexpr std::size_t kMinCellsPerThreadedStep = 4000;
 
     // The bands of the active box the advection works on this step (make_bands), and a
