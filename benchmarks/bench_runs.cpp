@@ -131,7 +131,7 @@ class StepLimit : public StepObserver {
 
 struct Outcome {
     double wall = 0.0, cpu = 0.0, construct = 0.0, t = 0.0, mass_error = 0.0, outflow = 0.0;
-    std::uint64_t steps = 0, updates = 0;
+    std::uint64_t steps = 0, updates = 0, band_updates = 0;
     std::string end;
 };
 
@@ -168,6 +168,7 @@ Outcome run_once(Scene& s, long step_limit) {
             v0;
     }
     o.updates = sim.stepper().cell_updates();
+    o.band_updates = sim.stepper().band_cell_updates();
     o.outflow = sim.stepper().outflow_volume();
     return o;
 }
@@ -231,6 +232,7 @@ RunRecord timed_case(const std::string& case_id, Build build, long step_limit, c
         r.simulated_time = o.t;
         r.steps = o.steps;
         r.cell_updates = o.updates;
+        r.band_cell_updates = o.band_updates;
         r.end_reason = o.end;
         r.relative_mass_error = o.mass_error;
         r.outflow_volume = o.outflow;

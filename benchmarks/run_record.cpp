@@ -25,6 +25,15 @@ double RunRecord::cell_updates_per_second() const {
     return w > 0.0 ? static_cast<double>(cell_updates) / w : 0.0;
 }
 
+namespace {
+// The share of the cell updates the bands computed, in per cent.
+double band_share(const RunRecord& r) {
+    return r.cell_updates > 0 ? 100.0 * static_cast<double>(r.band_cell_updates) /
+                                    static_cast<double>(r.cell_updates)
+                              : 0.0;
+}
+}  // namespace
+
 double RunRecord::bytes_per_cell() const {
     const double cells = static_cast<double>(nx) * ny;
     return cells > 0.0 ? peak_rss_bytes / cells : 0.0;
@@ -99,7 +108,9 @@ void print(const RunRecord& r) {
               << r.simulated_time << " s in " << r.steps
               << " steps, end: " << r.end_reason << "\n  cell updates "
               << static_cast<double>(r.cell_updates) << ", " << r.cell_updates_per_second() / 1e6
-              << " M/s\n  peak memory " << r.peak_rss_bytes / 1048576.0
+              << " M/s (of which the bands computed "
+              << static_cast<double>(r.band_cell_updates) << ", "
+              << band_share(r) << " %)\n  peak memory " << r.peak_rss_bytes / 1048576.0
               << " MiB = " << r.bytes_per_cell() << " B/cell (" << r.scene_bytes_per_cell()
               << " B/cell above the " << r.start_rss_bytes / 1048576.0
               << " MiB resident before the scene)\n  the run's data at its peak "
@@ -142,6 +153,7 @@ void append_json(const RunRecord& r, const std::string& path) {
       << ", \"simulated_time\": " << r.simulated_time << ", \"steps\": " << r.steps
       << ", \"cell_updates\": " << r.cell_updates
       << ", \"cell_updates_per_second\": " << r.cell_updates_per_second()
+      << ", \"band_cell_updates\": " << r.band_cell_updates
       << ", \"peak_rss_bytes\": " << r.peak_rss_bytes
       << ", \"bytes_per_cell\": " << r.bytes_per_cell()
       << ", \"start_rss_bytes\": " << r.start_rss_bytes

@@ -26,6 +26,9 @@ struct RunRecord {
     double simulated_time = 0.0;       // s
     std::uint64_t steps = 0;
     std::uint64_t cell_updates = 0;  // active-box cells x steps (RunStatistics)
+    // Of those, the cells the bands computed (Stepper::band_cell_updates): the rest are
+    // empty cells and settled films, which a step gives back without computing them.
+    std::uint64_t band_cell_updates = 0;
     std::string end_reason;
     double relative_mass_error = 0.0;
     double outflow_volume = 0.0;  // m^3 through open edges (case d: must be 0 on the crop)

@@ -302,6 +302,7 @@ void Stepper::step(State& s, double dt) {
         apply_sources(s, 0.5 * dt);
     }
     cell_updates_ += box_.cells();
+    band_cell_updates_ += band_cells;
 }
 
 // ---------------------------------------------------------------- advection L(tau): advection.cpp

@@ -78,6 +78,9 @@ class Stepper {
     [[nodiscard]] double energy_budget_of(const State& s) const;
     // Number of cell updates performed (active cells x steps).
     [[nodiscard]] std::uint64_t cell_updates() const { return cell_updates_; }
+    // Of those, the cells the bands computed (make_bands): the rest, empty cells and
+    // settled films, the step gives back unchanged without computing them.
+    [[nodiscard]] std::uint64_t band_cell_updates() const { return band_cell_updates_; }
 
     // Small active areas (the cells of the bands, since settled films are left out of
     // them) run on one thread: a parallel region costs tens of microseconds to wake the
@@ -306,7 +309,7 @@ class Stepper {
     double outflow_volume_ = 0.0;
     std::array<std::vector<double>, 4>
         edge_outflow_;  // per face of the west, east, south, north edges
-    std::uint64_t cell_updates_ = 0;
+    std::uint64_t cell_updates_ = 0, band_cell_updates_ = 0;
     // The regimes of regime(), each XOR kRegimeAtStart (stored_regime): a cell at start
     // holds 0, so the grid's flags are made without writing them and only the rows the
     // flow reaches are ever touched (field_storage.hpp). Assigning kRegimeAtStart to
