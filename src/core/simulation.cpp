@@ -249,7 +249,10 @@ RunStatistics Simulation::run() {
     const std::uint64_t cell_updates_before = L.cell_updates;  // the stepper counts from 0 again
     double& t = L.t;
     std::uint64_t& steps = L.steps;
-    const auto view = [&]() { return SimulationView{grid_, terrain_, state_, t, steps, stepper_.active_box()}; };
+    const auto view = [&]() {
+        return SimulationView{grid_, terrain_, state_, t, steps, stepper_.active_box(),
+                              steps > 0 ? stepper_.bands() : std::span<const ActiveBox>{}};
+    };
     if (!resumed_) {
         for (auto* o : observers_) o->on_start(view());
         for (auto* o : observers_) o->on_output(view());

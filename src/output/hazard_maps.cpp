@@ -81,26 +81,33 @@ void HazardMaps::restore(const CheckpointData& c) {
     reach_box_ = box;
 }
 
+// Cells with enough of them share the work between threads: the maps are a pass
+// over the cells of every step.
+constexpr std::size_t kMinCellsPerThreadedPass = 20000;
+
 void HazardMaps::accumulate(const SimulationView& v, int i0, int i1, int j0, int j1) {
     reach_box_ = reach_box_.united({i0, i1, j0, j1});
-    const double thr = params_.h_threshold;
-    const bool threaded = static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(j1 - j0) >= 20000;
+    const bool threaded =
+        static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(j1 - j0) >= kMinCellsPerThreadedPass;
 #pragma omp parallel for schedule(static) if (threaded)
-    for (int j = j0; j < j1; ++j) {
-        for (int i = i0; i < i1; ++i) {
-            const double hn = v.state.h(i, j) * v.terrain.normal_thickness(i, j);
-            if (hn <= 0.0) continue;
-            const std::size_t k = static_cast<std::size_t>(j) * grid_.nx + i;
-            // Speeds and pressures of the thin-layer film below h_thr are not hazard:
-            // they are the numerical wet/dry layer, not flowing material.
-            if (hn < thr) {
-                max_depth_[k] = std::max(max_depth_[k], hn);
-                continue;
-            }
-            if (!reached(k)) arrival_[k] = v.t;  // reached for the first time
+    for (int j = j0; j < j1; ++j) accumulate_row(v, j, i0, i1);
+}
+
+void HazardMaps::accumulate_row(const SimulationView& v, int j, int i0, int i1) {
+    const double thr = params_.h_threshold;
+    for (int i = i0; i < i1; ++i) {
+        const double hn = v.state.h(i, j) * v.terrain.normal_thickness(i, j);
+        if (hn <= 0.0) continue;
+        const std::size_t k = static_cast<std::size_t>(j) * grid_.nx + i;
+        // Speeds and pressures of the thin-layer film below h_thr are not hazard:
+        // they are the numerical wet/dry layer, not flowing material.
+        if (hn < thr) {
             max_depth_[k] = std::max(max_depth_[k], hn);
-            max_speed_[k] = std::max(max_speed_[k], true_speed(v.state, v.terrain, i, j));
+            continue;
         }
+        if (!reached(k)) arrival_[k] = v.t;  // reached for the first time
+        max_depth_[k] = std::max(max_depth_[k], hn);
+        max_speed_[k] = std::max(max_speed_[k], true_speed(v.state, v.terrain, i, j));
     }
 }
 
@@ -111,8 +118,28 @@ void HazardMaps::on_start(const SimulationView& v) {
     accumulate(v, v.box.i0, v.box.i1, v.box.j0, v.box.j1);
 }
 
+// Only the cells the step may have changed: every other cell of the box holds the state
+// the maps took in at an earlier step, and maxima and first arrivals of the same state
+// are what they were (on a valley of settled films a fourth of the box's cells).
 void HazardMaps::on_step(const SimulationView& v) {
-    accumulate(v, v.box.i0, v.box.i1, v.box.j0, v.box.j1);
+    if (v.changed.empty()) {
+        accumulate(v, v.box.i0, v.box.i1, v.box.j0, v.box.j1);
+        return;
+    }
+    reach_box_ = reach_box_.united(v.box);
+    std::size_t cells = 0;
+    changed_rows_.clear();
+    for (const ActiveBox& b : v.changed) {
+        if (b.empty()) continue;
+        cells += b.cells();
+        for (int j = b.j0; j < b.j1; ++j) changed_rows_.push_back({j, b.i0, b.i1});
+    }
+    const int n = static_cast<int>(changed_rows_.size());
+#pragma omp parallel for schedule(static) if (cells >= kMinCellsPerThreadedPass)
+    for (int q = 0; q < n; ++q) {
+        const auto [j, i0, i1] = changed_rows_[static_cast<std::size_t>(q)];
+        accumulate_row(v, j, i0, i1);
+    }
 }
 
 void HazardMaps::on_end(const SimulationView& v) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "avalanche/numerics/stepper.hpp"
+#include "avalanche/output/hazard_maps.hpp"
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 #include "rough_valley.hpp"
@@ -164,6 +165,45 @@ TEST(ActiveBands, LeaveOutOnlySettledFilmsToTheBit) {
             EXPECT_GT(bands.films_left_out, 0.1 * bands.films);
     }
     omp_set_num_threads(threads);
+}
+
+// The hazard maps take in, after each step, only the cells of the step's bands
+// (HazardMaps::on_step with SimulationView::changed): the cells of the box beside them,
+// empty or settled films, kept the state the maps took in before. Two maps of one run,
+// one fed the bands and one the whole box, must agree to the bit.
+TEST(ActiveBands, HazardMapsOfTheBandsAreThoseOfTheWholeBox) {
+    const Grid g{200, 330, 5.0, 5.0, 0.0, 0.0};
+    const std::vector<double> z = rough_valley(g);
+    const TerrainFields t = dem_terrain(g, z, kG);
+    Field2D h0 = rasterize_release(ParaboloidRelease{{0.25 * g.x_max(), 0.2 * g.y_max()}, 30.0, 3.0}, g);
+    const Field2D low = rasterize_release(ParaboloidRelease{{0.75 * g.x_max(), 0.94 * g.y_max()}, 30.0, 3.0}, g);
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) h0(i, j) += low(i, j);
+    State s = state_at_rest(g, h0, t);
+    Stepper stepper(g, t, MaterialParams{}, NumericsParams{}, kHMin);
+    stepper.reset_active_box(s);
+    OutputParams out;
+    out.h_threshold = 0.5 * kHMin;  // the films' depths are taken in as maxima too
+    HazardMaps by_bands(g, out, 2000.0), by_box(g, out, 2000.0);
+    by_bands.on_start(SimulationView{g, t, s, 0.0, 0, stepper.active_box()});
+    by_box.on_start(SimulationView{g, t, s, 0.0, 0, stepper.active_box()});
+    double time = 0.0, left_out = 0.0;  // box cells with material outside the bands
+    for (int k = 1; k <= 260; ++k) {
+        const double dt = stepper.stable_dt(s);
+        stepper.step(s, dt);
+        time += dt;
+        const ActiveBox& box = stepper.active_box();
+        by_bands.on_step(SimulationView{g, t, s, time, static_cast<std::uint64_t>(k), box, stepper.bands()});
+        by_box.on_step(SimulationView{g, t, s, time, static_cast<std::uint64_t>(k), box});
+        for (int j = box.j0; j < box.j1; ++j)
+            for (int i = box.i0; i < box.i1; ++i)
+                left_out += s.h(i, j) > 0.0 && !in_a_band(stepper.bands(), i, j) ? 1.0 : 0.0;
+    }
+    EXPECT_GT(left_out, 0.0);
+    EXPECT_TRUE(same_bits(by_bands.max_depth(), by_box.max_depth()));
+    EXPECT_TRUE(same_bits(by_bands.max_speed(), by_box.max_speed()));
+    EXPECT_TRUE(same_bits(by_bands.arrival_time(), by_box.arrival_time()));
+    EXPECT_EQ(by_bands.reach_box(), by_box.reach_box());
 }
 
 }  // namespace

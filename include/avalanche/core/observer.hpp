@@ -3,6 +3,7 @@
 // points, snapshots, checkpoints) without the loop knowing what they do.
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ struct SimulationView {
     double t;              // simulated time (s)
     std::uint64_t step;    // steps taken
     const ActiveBox& box;  // cells that may be non-zero (everything outside is dry)
+    // The boxes outside which the last step changed no cell (Stepper::bands: empty
+    // cells and settled films are given back unchanged); empty: any cell of the box
+    // may have changed (before the first step, or a view made elsewhere).
+    std::span<const ActiveBox> changed = {};
 };
 
 // What an observer carries from step to step, as named plain arrays, so that a

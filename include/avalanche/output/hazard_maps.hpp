@@ -7,6 +7,7 @@
 // velocity is the TRUE along-surface speed (the DEM frame adds the vertical
 // component of the projected velocity); impact pressure is rho |u|^2 in kPa.
 // "Reached" means h >= h_threshold.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -74,6 +75,7 @@ public:
 
 private:
     void accumulate(const SimulationView& v, int i0, int i1, int j0, int j1);
+    void accumulate_row(const SimulationView& v, int j, int i0, int i1);
     [[nodiscard]] bool reached(std::size_t k) const { return max_depth_[k] >= params_.h_threshold; }
     // The expression the step used when it kept a pressure map: (rho * s) * s.
     [[nodiscard]] double pressure_kpa(double speed) const { return density_ / 1000.0 * speed * speed; }
@@ -84,6 +86,7 @@ private:
     // arrival_ holds a time only where reached(k); elsewhere it stays 0.
     CellVector<double> max_depth_, max_speed_, arrival_, deposit_;
     ActiveBox reach_box_;
+    std::vector<std::array<int, 3>> changed_rows_;  // on_step's rows: j, first and end column
 };
 
 }  // namespace avalanche
