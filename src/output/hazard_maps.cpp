@@ -87,8 +87,8 @@ constexpr std::size_t kMinCellsPerThreadedPass = 20000;
 
 void HazardMaps::accumulate(const SimulationView& v, int i0, int i1, int j0, int j1) {
     reach_box_ = reach_box_.united({i0, i1, j0, j1});
-    const bool threaded =
-        static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(j1 - j0) >= kMinCellsPerThreadedPass;
+    const bool threaded = static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(j1 - j0) >=
+                          kMinCellsPerThreadedPass;
 #pragma omp parallel for schedule(static) if (threaded)
     for (int j = j0; j < j1; ++j) accumulate_row(v, j, i0, i1);
 }

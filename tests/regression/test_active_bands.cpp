@@ -175,8 +175,10 @@ TEST(ActiveBands, HazardMapsOfTheBandsAreThoseOfTheWholeBox) {
     const Grid g{200, 330, 5.0, 5.0, 0.0, 0.0};
     const std::vector<double> z = rough_valley(g);
     const TerrainFields t = dem_terrain(g, z, kG);
-    Field2D h0 = rasterize_release(ParaboloidRelease{{0.25 * g.x_max(), 0.2 * g.y_max()}, 30.0, 3.0}, g);
-    const Field2D low = rasterize_release(ParaboloidRelease{{0.75 * g.x_max(), 0.94 * g.y_max()}, 30.0, 3.0}, g);
+    Field2D h0 =
+        rasterize_release(ParaboloidRelease{{0.25 * g.x_max(), 0.2 * g.y_max()}, 30.0, 3.0}, g);
+    const Field2D low =
+        rasterize_release(ParaboloidRelease{{0.75 * g.x_max(), 0.94 * g.y_max()}, 30.0, 3.0}, g);
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) h0(i, j) += low(i, j);
     State s = state_at_rest(g, h0, t);
@@ -193,7 +195,8 @@ TEST(ActiveBands, HazardMapsOfTheBandsAreThoseOfTheWholeBox) {
         stepper.step(s, dt);
         time += dt;
         const ActiveBox& box = stepper.active_box();
-        by_bands.on_step(SimulationView{g, t, s, time, static_cast<std::uint64_t>(k), box, stepper.bands()});
+        by_bands.on_step(
+            SimulationView{g, t, s, time, static_cast<std::uint64_t>(k), box, stepper.bands()});
         by_box.on_step(SimulationView{g, t, s, time, static_cast<std::uint64_t>(k), box});
         for (int j = box.j0; j < box.j1; ++j)
             for (int i = box.i0; i < box.i1; ++i)
