@@ -85,12 +85,22 @@ void HazardMaps::restore(const CheckpointData& c) {
 // over the cells of every step.
 constexpr std::size_t kMinCellsPerThreadedPass = 20000;
 
-void HazardMaps::accumulate(const SimulationView& v, int i0, int i1, int j0, int j1) {
-    reach_box_ = reach_box_.united({i0, i1, j0, j1});
-    const bool threaded = static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(j1 - j0) >=
-                          kMinCellsPerThreadedPass;
-#pragma omp parallel for schedule(static) if (threaded)
-    for (int j = j0; j < j1; ++j) accumulate_row(v, j, i0, i1);
+// The cells of `boxes` (rows of the box the view holds), row by row.
+void HazardMaps::accumulate(const SimulationView& v, std::span<const ActiveBox> boxes) {
+    reach_box_ = reach_box_.united(v.box);
+    std::size_t cells = 0;
+    rows_.clear();
+    for (const ActiveBox& b : boxes) {
+        if (b.empty()) continue;
+        cells += b.cells();
+        for (int j = b.j0; j < b.j1; ++j) rows_.push_back({j, b.i0, b.i1});
+    }
+    const int n = static_cast<int>(rows_.size());
+#pragma omp parallel for schedule(static) if (cells >= kMinCellsPerThreadedPass)
+    for (int q = 0; q < n; ++q) {
+        const auto [j, i0, i1] = rows_[static_cast<std::size_t>(q)];
+        accumulate_row(v, j, i0, i1);
+    }
 }
 
 void HazardMaps::accumulate_row(const SimulationView& v, int j, int i0, int i1) {
@@ -114,32 +124,14 @@ void HazardMaps::accumulate_row(const SimulationView& v, int j, int i0, int i1) 
 // The active box holds every wet cell (observer.hpp): outside it h = 0, nothing to
 // accumulate, and the terrain there may not even be made (terrain.hpp) -- reading it
 // would touch memory no run needs.
-void HazardMaps::on_start(const SimulationView& v) {
-    accumulate(v, v.box.i0, v.box.i1, v.box.j0, v.box.j1);
-}
+void HazardMaps::on_start(const SimulationView& v) { accumulate(v, {&v.box, 1}); }
 
-// Only the cells the step may have changed: every other cell of the box holds the state
-// the maps took in at an earlier step, and maxima and first arrivals of the same state
-// are what they were (on a valley of settled films a fourth of the box's cells).
+// Only the cells the step may have changed (the view's changed boxes, else the whole
+// box): every other cell of the box holds the state the maps took in at an earlier
+// step, and maxima and first arrivals of the same state are what they were (on a valley
+// of settled films a fourth of the box's cells).
 void HazardMaps::on_step(const SimulationView& v) {
-    if (v.changed.empty()) {
-        accumulate(v, v.box.i0, v.box.i1, v.box.j0, v.box.j1);
-        return;
-    }
-    reach_box_ = reach_box_.united(v.box);
-    std::size_t cells = 0;
-    changed_rows_.clear();
-    for (const ActiveBox& b : v.changed) {
-        if (b.empty()) continue;
-        cells += b.cells();
-        for (int j = b.j0; j < b.j1; ++j) changed_rows_.push_back({j, b.i0, b.i1});
-    }
-    const int n = static_cast<int>(changed_rows_.size());
-#pragma omp parallel for schedule(static) if (cells >= kMinCellsPerThreadedPass)
-    for (int q = 0; q < n; ++q) {
-        const auto [j, i0, i1] = changed_rows_[static_cast<std::size_t>(q)];
-        accumulate_row(v, j, i0, i1);
-    }
+    accumulate(v, v.changed.empty() ? std::span<const ActiveBox>{&v.box, 1} : v.changed);
 }
 
 void HazardMaps::on_end(const SimulationView& v) {

@@ -74,7 +74,7 @@ public:
     void restore(const CheckpointData& c) override;
 
 private:
-    void accumulate(const SimulationView& v, int i0, int i1, int j0, int j1);
+    void accumulate(const SimulationView& v, std::span<const ActiveBox> boxes);
     void accumulate_row(const SimulationView& v, int j, int i0, int i1);
     [[nodiscard]] bool reached(std::size_t k) const { return max_depth_[k] >= params_.h_threshold; }
     // The expression the step used when it kept a pressure map: (rho * s) * s.
@@ -86,7 +86,7 @@ private:
     // arrival_ holds a time only where reached(k); elsewhere it stays 0.
     CellVector<double> max_depth_, max_speed_, arrival_, deposit_;
     ActiveBox reach_box_;
-    std::vector<std::array<int, 3>> changed_rows_;  // on_step's rows: j, first and end column
+    std::vector<std::array<int, 3>> rows_;  // accumulate's rows: j, first and end column
 };
 
 }  // namespace avalanche
