@@ -8,7 +8,6 @@
 // they are settled (Stepper::films_settled_): with the faces friction holds and without,
 // and under S L S, whose films keep the friction stage's momentum and stay in the bands.
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cstring>
@@ -19,6 +18,7 @@
 #include "avalanche/physics/dem_frame.hpp"
 #include "avalanche/physics/release.hpp"
 #include "rough_valley.hpp"
+#include "support/analytic_harness.hpp"
 #include "support/same_bits.hpp"
 
 using namespace avalanche;
@@ -29,10 +29,27 @@ constexpr double kG = 9.81;
 
 using avalanche::test::same_bits;
 
-// A valley falling to the north (+y) at 45 degrees, with a rough surface.
-std::vector<double> rough_valley(const Grid& g) { return avalanche::testing::rough_valley(g, 1.0, 0.001); }
-
 constexpr double kHMin = 1e-4;
+
+// The scene of every test: a valley falling to the north (+y) at 45 degrees, with a
+// rough surface.
+const Grid kValley{200, 330, 5.0, 5.0, 0.0, 0.0};
+
+TerrainFields valley_terrain() {
+    return dem_terrain(kValley, avalanche::testing::rough_valley(kValley, 1.0, 0.001), kG);
+}
+
+// The two flows at rest; with one_flow, only the high one.
+State release(const TerrainFields& t, bool one_flow) {
+    const Grid& g = kValley;
+    Field2D h0 =
+        rasterize_release(ParaboloidRelease{{0.25 * g.x_max(), 0.2 * g.y_max()}, 30.0, 3.0}, g);
+    const Field2D low =
+        rasterize_release(ParaboloidRelease{{0.75 * g.x_max(), 0.94 * g.y_max()}, 30.0, 3.0}, g);
+    for (int j = 0; j < g.ny && !one_flow; ++j)
+        for (int i = 0; i < g.nx; ++i) h0(i, j) += low(i, j);
+    return state_at_rest(g, h0, t);
+}
 
 struct BandedRun {
     State state;
@@ -54,17 +71,13 @@ bool in_a_band(const std::vector<ActiveBox>& bands, int i, int j) {
 }
 
 // With one_flow, only the high one: then the bands are often one, narrower than the box.
-BandedRun run(const Grid& g, const TerrainFields& t, bool whole_box, int steps,
+BandedRun run(const TerrainFields& t, bool whole_box, int steps,
               const NumericsParams& n = {},  // the defaults: open edges, L S L
               bool one_flow = false) {
-    Field2D h0 = rasterize_release(ParaboloidRelease{{0.25 * g.x_max(), 0.2 * g.y_max()}, 30.0, 3.0}, g);
-    const Field2D low = rasterize_release(ParaboloidRelease{{0.75 * g.x_max(), 0.94 * g.y_max()}, 30.0, 3.0}, g);
-    for (int j = 0; j < g.ny && !one_flow; ++j)
-        for (int i = 0; i < g.nx; ++i) h0(i, j) += low(i, j);
     BandedRun r;
-    r.state = state_at_rest(g, h0, t);
+    r.state = release(t, one_flow);
     const MaterialParams m;  // Savage-Hutter earth pressure: regimes carried
-    Stepper stepper(g, t, m, n, kHMin);
+    Stepper stepper(kValley, t, m, n, kHMin);
     stepper.set_whole_box_advection(whole_box);
     // Every cell starts passive in both directions, as the cells a flow has left keep
     // the regimes it gave them: the whole box gives its empty cells the regime at
@@ -115,14 +128,11 @@ void expect_same_run(const BandedRun& a, const BandedRun& b) {
 }
 
 TEST(ActiveBands, GiveTheWholeBoxsStateOutflowAndRegimesToTheBit) {
-    const Grid g{200, 330, 5.0, 5.0, 0.0, 0.0};
-    const std::vector<double> z = rough_valley(g);
-    const TerrainFields t = dem_terrain(g, z, kG);
-    const int threads = omp_get_max_threads();
+    const TerrainFields t = valley_terrain();
     for (int n : {1, 2}) {
-        omp_set_num_threads(n);
-        const BandedRun whole = run(g, t, true, 260);
-        const BandedRun bands = run(g, t, false, 260);
+        const analytic::ScopedThreads threads(n);
+        const BandedRun whole = run(t, true, 260);
+        const BandedRun bands = run(t, false, 260);
         SCOPED_TRACE(n);
         expect_same_run(whole, bands);
         // The comparison says something: a flow left through the north edge, the
@@ -135,18 +145,14 @@ TEST(ActiveBands, GiveTheWholeBoxsStateOutflowAndRegimesToTheBit) {
         EXPECT_EQ(whole.films_left_out, 0.0);
         EXPECT_GT(bands.films_left_out, 0.1 * bands.films);
     }
-    omp_set_num_threads(threads);
 }
 
 // The same with the faces friction holds at rest, whose flags (held_at_rest) the steps
 // carry too, and under S L S: its steps end with a friction stage, which moves the
 // films on the steep valley, so its bands keep every film (and give the same bits).
 TEST(ActiveBands, LeaveOutOnlySettledFilmsToTheBit) {
-    const Grid g{200, 330, 5.0, 5.0, 0.0, 0.0};
-    const std::vector<double> z = rough_valley(g);
-    const TerrainFields t = dem_terrain(g, z, kG);
-    const int threads = omp_get_max_threads();
-    omp_set_num_threads(2);
+    const TerrainFields t = valley_terrain();
+    const analytic::ScopedThreads threads(2);
     NumericsParams held;
     held.rest_faces = true;
     NumericsParams sls;
@@ -155,8 +161,8 @@ TEST(ActiveBands, LeaveOutOnlySettledFilmsToTheBit) {
     for (const NumericsParams& n : {held, sls, lsl}) {
         const bool one_flow = !n.rest_faces && n.splitting == Splitting::lsl;
         SCOPED_TRACE(n.rest_faces ? "rest faces" : (one_flow ? "one flow" : "S L S"));
-        const BandedRun whole = run(g, t, true, 260, n, one_flow);
-        const BandedRun bands = run(g, t, false, 260, n, one_flow);
+        const BandedRun whole = run(t, true, 260, n, one_flow);
+        const BandedRun bands = run(t, false, 260, n, one_flow);
         expect_same_run(whole, bands);
         ASSERT_GT(bands.films, 0.0);
         if (n.splitting == Splitting::sls)
@@ -166,7 +172,6 @@ TEST(ActiveBands, LeaveOutOnlySettledFilmsToTheBit) {
         else
             EXPECT_GT(bands.films_left_out, 0.1 * bands.films);
     }
-    omp_set_num_threads(threads);
 }
 
 // The hazard maps take in, after each step, only the cells of the step's bands
@@ -174,16 +179,9 @@ TEST(ActiveBands, LeaveOutOnlySettledFilmsToTheBit) {
 // empty or settled films, kept the state the maps took in before. Two maps of one run,
 // one fed the bands and one the whole box, must agree to the bit.
 TEST(ActiveBands, HazardMapsOfTheBandsAreThoseOfTheWholeBox) {
-    const Grid g{200, 330, 5.0, 5.0, 0.0, 0.0};
-    const std::vector<double> z = rough_valley(g);
-    const TerrainFields t = dem_terrain(g, z, kG);
-    Field2D h0 =
-        rasterize_release(ParaboloidRelease{{0.25 * g.x_max(), 0.2 * g.y_max()}, 30.0, 3.0}, g);
-    const Field2D low =
-        rasterize_release(ParaboloidRelease{{0.75 * g.x_max(), 0.94 * g.y_max()}, 30.0, 3.0}, g);
-    for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) h0(i, j) += low(i, j);
-    State s = state_at_rest(g, h0, t);
+    const Grid& g = kValley;
+    const TerrainFields t = valley_terrain();
+    State s = release(t, false);
     Stepper stepper(g, t, MaterialParams{}, NumericsParams{}, kHMin);
     stepper.reset_active_box(s);
     OutputParams out;
