@@ -6,36 +6,11 @@
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/gis/style.hpp"
+#include "avalanche/io/html_text.hpp"  // its five entities are XML's too
 
 namespace avalanche::gis {
 
 namespace {
-
-std::string xml_escape(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            case '\'':
-                out += "&apos;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
 
 std::string hex(const Rgba& c) {
     char buf[8];
@@ -54,7 +29,7 @@ std::string value_text(double v) {
 void item(std::ostream& out, const char* tag, double value, const Rgba& c,
           const std::string& label) {
     out << "          <" << tag << " value=\"" << value_text(value) << "\" color=\"" << hex(c)
-        << "\" alpha=\"" << int(c.a) << "\" label=\"" << xml_escape(label) << "\"/>\n";
+        << "\" alpha=\"" << int(c.a) << "\" label=\"" << html_escape(label) << "\"/>\n";
 }
 
 // QGIS "Discrete" items are upper bounds (a value takes the first item >= it), so the

@@ -210,6 +210,23 @@ TEST(WriteQml, HazardClassesArePalettedWithLegendLabels) {
     CPLDestroyXMLNode(root);
 }
 
+// A legend label with every character XML reserves reads back as written (the labels
+// are escaped as attribute values).
+TEST(WriteQml, LabelsWithMarkupCharactersReadBackAsWritten) {
+    TempDir tmp;
+    ColorRamp r = hazard_class_palette();
+    const std::string label = "a < b & \"c\" > 'd'";
+    r.stops[1].label = label;
+    write_qml(tmp.file("labels.qml"), r);
+    CPLXMLNode* root = CPLParseXMLFile(tmp.file("labels.qml").c_str());
+    ASSERT_NE(root, nullptr);
+    std::vector<CPLXMLNode*> entries;
+    collect(root, "paletteEntry", entries);
+    ASSERT_EQ(entries.size(), 4u);
+    EXPECT_EQ(std::string(CPLGetXMLValue(entries[1], "label", "")), label);
+    CPLDestroyXMLNode(root);
+}
+
 TEST(Style, DiscreteClassesMatchQgis) {
     const ColorRamp r = pressure_ramp();  // breaks 1, 3, 10, 30, 100 kPa
     EXPECT_EQ(color_at(r, 0.5).a, 0);     // below the first break: not drawn

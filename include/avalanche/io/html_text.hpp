@@ -6,7 +6,8 @@
 
 namespace avalanche {
 
-// Escapes & < > " ' for element text and attribute values.
+// Escapes & < > " ' for element text and attribute values, in HTML and in XML (the
+// QGIS styles, qml_writer.cpp): ' becomes the character reference &#39;, which both read.
 std::string html_escape(std::string_view text);
 
 // RFC 4648 base64 (standard alphabet, '=' padding), for data: URIs.
