@@ -261,6 +261,84 @@ TEST(HazardMaps, TheReachBoxHoldsCellsTheFlowHasLeft) {
     EXPECT_DOUBLE_EQ(m.deposit_volume_m3, 6 * 0.4);  // the second patch, at the end
 }
 
+// The maps' rule, cell by cell and written out here on its own: nothing where h n <= 0;
+// below h_thr only the maximum depth; at or above it the first arrival, the maximum depth
+// and the maximum true speed (with the vertical component in the DEM frame). Random dry
+// cells, films, cells at h_thr and flowing cells over several steps, in rows of odd
+// width with a box that is not aligned: the maps must be those of the rule to the bit.
+TEST(HazardMaps, EveryCellFollowsTheRuleOfTheMapsToTheBit) {
+    const Grid g{37, 6, 2.0, 2.0};
+    const OutputParams out;
+    for (const bool metric : {false, true}) {
+        TerrainFields terrain;
+        terrain.allocate(g, false, metric);
+        terrain.has_metric = metric;
+        State s(g);
+        std::uint64_t seed = 12345;
+        const auto uniform = [&seed] {  // in [0, 1), a fixed sequence (LCG)
+            seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+            return static_cast<double>(seed >> 11) * 0x1.0p-53;
+        };
+        for (int j = 0; j < g.ny; ++j)
+            for (int i = 0; i < g.nx; ++i) {
+                terrain.normal_thickness(i, j) = 0.7 + 0.3 * uniform();
+                if (metric) {
+                    terrain.sx(i, j) = 2.0 * uniform() - 1.0;
+                    terrain.sy(i, j) = 2.0 * uniform() - 1.0;
+                }
+            }
+        std::vector<double> depth(g.cells(), 0.0), speed(g.cells(), 0.0), arrival(g.cells(), 0.0);
+        long films = 0;  // film cells taken in, over the steps
+        HazardMaps maps(g, out, 2000.0);
+        const ActiveBox box{3, 34, 0, g.ny};
+        for (int step = 0; step < 6; ++step) {
+            const double t = 0.5 * step;
+            for (int j = 0; j < g.ny; ++j)
+                for (int i = box.i0; i < box.i1; ++i) {
+                    // Dry, a film below h_thr, at h_thr exactly, or flowing.
+                    const double pick = uniform();
+                    const double h = pick < 0.25   ? 0.0
+                                     : pick < 0.5  ? 0.009 * uniform()
+                                     : pick < 0.55 ? out.h_threshold / terrain.normal_thickness(i, j)
+                                                   : 2.0 * uniform();
+                    s.h(i, j) = h;
+                    s.hu(i, j) = h * (20.0 * uniform() - 10.0);
+                    s.hv(i, j) = h * (20.0 * uniform() - 10.0);
+                    const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
+                    const double hn = h * terrain.normal_thickness(i, j);
+                    if (hn <= 0.0) continue;
+                    films += hn < out.h_threshold;
+                    if (hn >= out.h_threshold) {
+                        if (!(depth[k] >= out.h_threshold)) arrival[k] = t;
+                        const double u = s.hu(i, j) / h, v = s.hv(i, j) / h;
+                        double speed2 = u * u + v * v;
+                        if (metric) {
+                            const double w = terrain.sx(i, j) * u + terrain.sy(i, j) * v;
+                            speed2 += w * w;
+                        }
+                        speed[k] = std::max(speed[k], std::sqrt(speed2));
+                    }
+                    depth[k] = std::max(depth[k], hn);
+                }
+            const SimulationView view{g, terrain, s, t, static_cast<std::uint64_t>(step), box};
+            if (step == 0)
+                maps.on_start(view);
+            else
+                maps.on_step(view);
+        }
+        long flowing = 0;
+        for (std::size_t k = 0; k < g.cells(); ++k) {
+            ASSERT_EQ(maps.max_depth()[k], depth[k]) << "cell " << k << (metric ? ", DEM frame" : "");
+            ASSERT_EQ(maps.max_speed()[k], speed[k]) << "cell " << k << (metric ? ", DEM frame" : "");
+            const double a = depth[k] >= out.h_threshold ? arrival[k] : HazardMaps::kNotReached;
+            ASSERT_EQ(maps.arrival_time(k), a) << "cell " << k << (metric ? ", DEM frame" : "");
+            flowing += depth[k] >= out.h_threshold;
+        }
+        EXPECT_GT(flowing, 50);  // both kinds of cell are there to test
+        EXPECT_GT(films, 100);
+    }
+}
+
 // On a large DEM the maps hold memory only where the flow went: made, read whole and
 // classified, the maps of a 2000 x 2000 grid (32 MB each) stay unwritten.
 TEST(HazardMaps, MapsOfALargeGridHoldNoMemoryUntilTheFlowReachesThem) {
