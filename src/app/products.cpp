@@ -59,9 +59,11 @@ std::vector<std::string> write_products(const std::string& dir, const ProductInp
     // One hillshade under every quick-look, already per pixel as they draw it: the cells'
     // hillshade and the elevation's copy are freed here (each is a grid-sized array of
     // first-touched memory on a large grid; dem.tif makes its own copy when written).
-    // A batch's scenarios of one scene share it.
+    // A batch's scenarios of one scene share it. The cells outside the DEM's data are
+    // drawn hatched, not shaded (quicklook.hpp).
     const auto make_shade = [&] {
-        return gis::quicklook_shade(g, gis::hillshade(g, in.scene.terrain.elevation.interior()));
+        return gis::quicklook_shade(g, gis::hillshade(g, in.scene.terrain.elevation.interior()),
+                                    in.scene.outside_data);
     };
     const gis::QuicklookShade own_shade = in.shared ? gis::QuicklookShade{} : make_shade();
     const gis::QuicklookShade& shade = in.shared ? in.shared->shade(make_shade) : own_shade;

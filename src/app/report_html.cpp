@@ -182,6 +182,7 @@ std::string maps_section(const std::string& dir, const ProductInputs& in) {
     // The release as rasterized: the cells that held material at the start.
     overlay.release = in.release_cells;
     if (in.probes) overlay.points = in.probes->points();
+    overlay.no_terrain_data = !in.scene.outside_data.empty();
 
     std::ostringstream s;
     s << "<section id=\"maps\"><h2>Maps</h2>\n<p>Each map is also a GeoTIFF in this folder "

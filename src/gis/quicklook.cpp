@@ -115,10 +115,23 @@ void write_quicklook_png(const std::string& path, const GeoGrid& geo,
                              nodata, block);
 }
 
-QuicklookShade quicklook_shade(const Grid& g, std::vector<double> shade_of_cells) {
+QuicklookShade quicklook_shade(const Grid& g, std::vector<double> shade_of_cells,
+                               const std::vector<std::uint8_t>& outside_data) {
+    if (shade_of_cells.size() != g.cells() || (!outside_data.empty() && outside_data.size() != g.cells()))
+        throw Error(ExitCode::internal, "quicklook_shade: size mismatch");
     QuicklookShade q;
     q.cells_per_pixel = quicklook_cells_per_pixel(g);
     const int f = q.cells_per_pixel;
+    if (!outside_data.empty()) {
+        // A pixel without terrain data: all of its cells outside the footprint (a block
+        // with one measured cell shows that cell's terrain).
+        q.no_data.assign(pixel_grid(g, f).cells(), 1);
+        for_each_block(g, f, [&](std::size_t b, int j0, int j1, int i0, int i1) {
+            for (int j = j0; j < j1; ++j)
+                for (int i = i0; i < i1; ++i)
+                    if (outside_data[static_cast<std::size_t>(j) * g.nx + i] == 0) q.no_data[b] = 0;
+        });
+    }
     if (f == 1) {
         q.tone = std::move(shade_of_cells);
         return q;
@@ -156,15 +169,21 @@ void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
     std::vector<double> blocks;
     if (f > 1) blocks = values_in_blocks(geo.grid, values_of_cells, nodata, block, f);
     const std::vector<double>& values = f > 1 ? blocks : values_of_cells;
-    const std::vector<double>& shade = pixels.tone;
+    if (!pixels.no_data.empty() && pixels.no_data.size() != g.cells())
+        throw OutputError(path, "map and hillshade sizes differ from the grid");
     std::vector<std::uint8_t> rgb[3];
     for (auto& c : rgb) c.resize(g.cells());
     for (std::size_t k = 0; k < g.cells(); ++k) {
-        const double grey = 255.0 * shade[k];
+        const bool no_data = !pixels.no_data.empty() && pixels.no_data[k] != 0;
+        const double shade =
+            no_data ? no_data_tone(static_cast<int>(k % static_cast<std::size_t>(g.nx)),
+                                   static_cast<int>(k / static_cast<std::size_t>(g.nx)))
+                    : pixels.tone[k];
+        const double grey = 255.0 * shade;
         Rgba c{0, 0, 0, 0};
         if (has_value(values[k], nodata)) c = color_at(ramp, values[k]);
         const double a = kOverlayOpacity * c.a / 255.0;
-        const double tone = kShadeFloor + (1.0 - kShadeFloor) * shade[k];
+        const double tone = kShadeFloor + (1.0 - kShadeFloor) * shade;
         const double channel[3] = {double(c.r), double(c.g), double(c.b)};
         for (int b = 0; b < 3; ++b)
             rgb[b][k] = static_cast<std::uint8_t>(

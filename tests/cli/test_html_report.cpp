@@ -300,6 +300,8 @@ TEST_F(HtmlReport, MapsAreTheQuickLooksWithAConsistentScaleBar) {
     const std::string point = summary_["monitoring_points"][0]["name"];
     EXPECT_GE(all_matches(html_, "(<g class=\"point\">)").size(), 6u);
     EXPECT_NE(html_.find(">" + point + "</text>"), std::string::npos);
+    // avaKot's DEM covers 60 % of its grid: the notes explain the hatch of the rest.
+    EXPECT_NE(html_.find("hatched with diagonals is outside the DEM's data"), std::string::npos);
 }
 
 TEST_F(HtmlReport, ExplainsTheHazardClassesWithTheRunsLimits) {
@@ -434,6 +436,15 @@ TEST(HtmlReportMap, LegendListsTheClassesAndWhatIsNotColoured) {
     EXPECT_NE(legend.find("up to 0.1 m: not coloured"), std::string::npos) << legend;
     EXPECT_NE(legend.find("background:#c6dbef\"></span>0.1 - 0.5 m"), std::string::npos) << legend;
     EXPECT_NE(legend.find("&gt; 0.5 m"), std::string::npos) << legend;
+}
+
+TEST(HtmlReportMap, NotesExplainTheHatchOnlyWhereTheTerrainHasNoData) {
+    MapOverlay o;
+    o.grid = Grid{4, 3, 10.0, 10.0};
+    EXPECT_EQ(map_notes_html(o).find("outside the DEM's data"), std::string::npos);
+    o.no_terrain_data = true;
+    EXPECT_NE(map_notes_html(o).find("hatched with diagonals is outside the DEM's data"),
+              std::string::npos);
 }
 
 // --- the batch report ----------------------------------------------------------------------

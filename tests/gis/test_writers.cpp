@@ -322,6 +322,76 @@ TEST(Quicklook, ShadeOfThePixelsIsTheMeanOfTheirCells) {
                  OutputError);
 }
 
+// Cells outside the DEM's data are drawn as the hatch (no_data_tone), whatever the filled
+// terrain's hillshade there; a map's colour still shows over them; the cells with data
+// are drawn as without the mask, byte for byte. In blocks of cells a pixel is hatched only
+// when every cell of its block is outside.
+TEST(Quicklook, CellsOutsideTheDemsDataAreHatchedNotShaded) {
+    TempDir tmp;
+    const int nx = 40, ny = 30;
+    const GeoGrid geo = utm_grid(nx, ny);
+    std::vector<double> z(geo.grid.cells()), depth(geo.grid.cells(), -9999.0);
+    std::vector<std::uint8_t> outside(geo.grid.cells(), 0);
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            z[j * nx + i] = 2.0 * i + 3.0 * j + 40.0 * std::sin(0.3 * i * j);  // shades differ
+            outside[j * nx + i] = i >= 30 ? 1 : 0;
+        }
+    depth[10 * nx + 35] = 3.0;  // flow drawn over a cell without data
+    const std::vector<double> shade = hillshade(geo.grid, z);
+    write_quicklook_png_over(tmp.file("masked.png"), geo, depth, quicklook_shade(geo.grid, shade, outside),
+                             depth_ramp(), -9999.0);
+    write_quicklook_png_over(tmp.file("plain.png"), geo, depth, quicklook_shade(geo.grid, shade),
+                             depth_ramp(), -9999.0);
+    GDALAllRegister();
+    GDALDataset* masked = GDALDataset::Open(tmp.file("masked.png").c_str(), GDAL_OF_RASTER);
+    GDALDataset* plain = GDALDataset::Open(tmp.file("plain.png").c_str(), GDAL_OF_RASTER);
+    ASSERT_NE(masked, nullptr);
+    ASSERT_NE(plain, nullptr);
+    // Pixel (band, i, j) with j counted from the south, as the solver's rows.
+    const auto pixel = [&](GDALDataset* ds, int band, int i, int j) {
+        unsigned char v = 0;
+        EXPECT_EQ(ds->GetRasterBand(band)->RasterIO(GF_Read, i, ny - 1 - j, 1, 1, &v, 1, 1, GDT_Byte, 0,
+                                                    0, nullptr),
+                  CE_None);
+        return int(v);
+    };
+    int lines = 0, ground = 0, shaded_apart = 0;
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            if (i < 30) {
+                for (int b = 1; b <= 3; ++b)
+                    ASSERT_EQ(pixel(masked, b, i, j), pixel(plain, b, i, j)) << i << ", " << j;
+                continue;
+            }
+            if (i == 35 && j == 10) continue;
+            const int expected = static_cast<int>(std::lround(255.0 * no_data_tone(i, j)));
+            for (int b = 1; b <= 3; ++b) ASSERT_EQ(pixel(masked, b, i, j), expected) << i << ", " << j;
+            (no_data_tone(i, j) == kNoDataLine ? lines : ground) += 1;
+            shaded_apart += pixel(plain, 1, i, j) != expected;
+        }
+    EXPECT_GT(lines, 10);
+    EXPECT_GT(ground, 10);
+    EXPECT_GT(shaded_apart, 50) << "the hillshade there would have looked the same";
+    EXPECT_GT(pixel(masked, 3, 35, 10), pixel(masked, 1, 35, 10) + 30) << "the flow's blue";
+    GDALClose(masked);
+    GDALClose(plain);
+
+    // Blocks of 3 x 3 cells: the first three blocks wholly outside, the fourth mixed.
+    const GeoGrid wide = utm_grid(2 * kQuicklookMaxPixels + 4, 5);
+    std::vector<std::uint8_t> left(wide.grid.cells(), 0);
+    for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 10; ++i) left[static_cast<std::size_t>(j) * wide.grid.nx + i] = 1;
+    const QuicklookShade q =
+        quicklook_shade(wide.grid, std::vector<double>(wide.grid.cells(), 0.5), left);
+    ASSERT_EQ(q.no_data.size(), q.tone.size());
+    EXPECT_EQ(q.no_data[0], 1);
+    EXPECT_EQ(q.no_data[2], 1);
+    EXPECT_EQ(q.no_data[3], 0) << "a block with measured cells shows their terrain";
+    EXPECT_EQ(q.no_data[1367 + 2], 1) << "the second row of blocks, cut short";
+    EXPECT_TRUE(quicklook_shade(wide.grid, std::vector<double>(wide.grid.cells(), 0.5)).no_data.empty());
+}
+
 // A grid longer than kQuicklookMaxPixels: 3 x 3 cells a pixel. A block's colour is that
 // of its largest valid value (its smallest for arrival times), so that one cell of flow
 // shows; a block without one is the grey of its mean hillshade.

@@ -35,6 +35,8 @@ struct MapOverlay {
     std::string crs_label;
     std::vector<std::uint8_t> release;  // release cells (solver orientation); may be empty
     std::vector<ProbeLocation> points;  // monitoring points; may be empty
+    // Whether the quick-looks hatch cells outside the DEM's data (gis::QuicklookShade).
+    bool no_terrain_data = false;
 };
 
 struct MapFigure {

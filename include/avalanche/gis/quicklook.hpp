@@ -1,6 +1,7 @@
 #pragma once
 // PNG quick-looks: a product map coloured over a hillshade of the terrain, for
 // reports and a first glance without a GIS.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -56,11 +57,28 @@ void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
 // pixel per cell) or the mean of its block of f x f cells. Made once for several maps,
 // it spares each quick-look the pass over the cells' hillshade, and the cells' hillshade
 // need not outlive it (on a 14.5 M-cell grid, 116 MB against 1.3 MB).
+// Pixels with no terrain data (every cell of theirs outside the source DEM's data
+// footprint, where the grid's elevations were filled in to run the model) are drawn as a
+// flat light grey hatched with darker diagonals instead of their hillshade: the
+// interpolated terrain there is not terrain anyone measured, and its hillshade (streaks,
+// and steps along the footprint) would read as if it were.
 struct QuicklookShade {
-    int cells_per_pixel = 1;  // f, quicklook_cells_per_pixel of the grid
-    std::vector<double> tone; // per pixel, in [0, 1]
+    int cells_per_pixel = 1;               // f, quicklook_cells_per_pixel of the grid
+    std::vector<double> tone;              // per pixel, in [0, 1]
+    std::vector<std::uint8_t> no_data;     // per pixel, 1 where no terrain data; empty: none
 };
-[[nodiscard]] QuicklookShade quicklook_shade(const Grid& grid, std::vector<double> shade_of_cells);
+// `outside_data`: one flag per cell (1 outside the DEM's data), or empty when every cell
+// has data.
+[[nodiscard]] QuicklookShade quicklook_shade(const Grid& grid, std::vector<double> shade_of_cells,
+                                             const std::vector<std::uint8_t>& outside_data = {});
+// The grey (in [0, 1]) of a pixel without terrain data at pixel column i and row j (any
+// orientation): the hatch's diagonal lines, one pixel wide every kNoDataHatchPeriod
+// pixels, and the light ground between them.
+inline constexpr int kNoDataHatchPeriod = 6;
+inline constexpr double kNoDataGround = 0.93, kNoDataLine = 0.72;
+[[nodiscard]] inline double no_data_tone(int i, int j) {
+    return (i + j) % kNoDataHatchPeriod == 0 ? kNoDataLine : kNoDataGround;
+}
 // write_quicklook_png_over with the pixels' shade of quicklook_shade(geo.grid, ...).
 void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
                               const std::vector<double>& values, const QuicklookShade& shade,
