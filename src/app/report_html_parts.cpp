@@ -78,7 +78,8 @@ figure.map { margin: 1.2em 0 2em; page-break-inside: avoid; }
 .legend-title { font-weight: bold; }
 .swatch { display: inline-block; width: 22px; height: 14px; margin-right: 8px;
           border: 1px solid #666; vertical-align: middle; }
-.swatch.none { background: repeating-linear-gradient(45deg, #fff 0 3px, #ddd 3px 6px); }
+.swatch.none { background: linear-gradient(90deg, #aaa, #f2f2f2); }
+.swatch.nodata { background: repeating-linear-gradient(135deg, #b8b8b8 0 1px, #ededed 1px 6px); }
 figcaption { color: #444; font-size: 0.92em; max-width: 900px; margin-top: 6px; }
 .classes td:first-child { white-space: nowrap; }
 .plots { display: flex; flex-wrap: wrap; gap: 8px 16px; }

@@ -436,6 +436,11 @@ TEST(HtmlReportMap, LegendListsTheClassesAndWhatIsNotColoured) {
     EXPECT_NE(legend.find("up to 0.1 m: not coloured"), std::string::npos) << legend;
     EXPECT_NE(legend.find("background:#c6dbef\"></span>0.1 - 0.5 m"), std::string::npos) << legend;
     EXPECT_NE(legend.find("&gt; 0.5 m"), std::string::npos) << legend;
+    EXPECT_EQ(legend.find("no terrain data"), std::string::npos) << legend;
+    const std::string hatched = legend_html(gis::depth_ramp({0.1, 0.5}), "depth, m", true);
+    EXPECT_NE(hatched.find("swatch nodata\"></span>no terrain data (outside the DEM)"),
+              std::string::npos)
+        << hatched;
 }
 
 TEST(HtmlReportMap, NotesExplainTheHatchOnlyWhereTheTerrainHasNoData) {

@@ -56,7 +56,9 @@ std::string map_figure_html(const MapFigure& figure, const MapOverlay& overlay);
 std::string map_notes_html(const MapOverlay& overlay);
 
 // The legend of a ramp as an HTML list of colour swatches and labels; a discrete ramp that
-// leaves values up to its first break uncoloured says so.
-std::string legend_html(const gis::ColorRamp& ramp, const std::string& title);
+// leaves values up to its first break uncoloured says so (its swatch is the grey terrain);
+// with no_terrain_data, an entry for the hatch of the cells outside the DEM's data.
+std::string legend_html(const gis::ColorRamp& ramp, const std::string& title,
+                        bool no_terrain_data = false);
 
 }  // namespace avalanche
