@@ -164,7 +164,8 @@ RunOutcome execute(const PreparedScene& scene, State initial, const Scenario& s,
     HazardMaps maps(scene.grid, s.output, s.material.density);
     // Monitoring series every tenth of the snapshot interval: fine enough to see a
     // front pass a point, small enough to keep the CSV readable.
-    MonitoringPoints probes(scene.probes, s.numerics.output_interval / 10.0, s.material.density);
+    MonitoringPoints probes(scene.probes, s.numerics.output_interval / 10.0, s.material.density,
+                            s.output.h_threshold);
     sim->add_observer(&results);
     sim->add_observer(&maps);
     if (!scene.probes.empty()) sim->add_observer(&probes);

@@ -60,7 +60,11 @@ std::string monitoring_section(const ProductInputs& in, const nlohmann::json& su
     std::ostringstream s;
     s << "<section id=\"monitoring\"><h2>Monitoring points</h2>\n<p>What the flow did at "
          "chosen places (white dots on the maps). Depth is measured perpendicular to the slope; "
-         "the pressure is the impact pressure on an obstacle standing across the flow.</p>\n"
+         "the pressure is the impact pressure on an obstacle standing across the flow. As in "
+         "the maps, speed and pressure count only while the flow is at least "
+      << format_number(in.scenario.output.h_threshold)
+      << " m deep: a thinner layer is the numerical film a flow leaves, not flowing "
+         "material.</p>\n"
          "<table><tr><th>point</th><th class=\"n\">x (m)</th><th class=\"n\">y (m)</th><th "
          "class=\"n\">first arrival (s)</th><th class=\"n\">max depth (m)</th><th "
          "class=\"n\">max speed (m/s)</th><th class=\"n\">max pressure (kPa)</th></tr>\n";

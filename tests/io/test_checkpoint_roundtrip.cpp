@@ -65,7 +65,7 @@ struct Observers {
     Observers(const Scene& s, const std::string& path)
         : results(path, s.grid, s.meta),
           maps(s.grid, s.scenario.output, s.scenario.material.density),
-          probes(s.probes, 0.025, s.scenario.material.density) {}
+          probes(s.probes, 0.025, s.scenario.material.density, s.scenario.output.h_threshold) {}
     void attach(Simulation& sim) {
         sim.add_observer(&results);
         sim.add_observer(&maps);
@@ -215,7 +215,7 @@ TEST(CheckpointRoundTrip, ObserversRefuseDataThatDoesNotFitTheRun) {
     EXPECT_THROW(maps.restore(data), InputError);
     EXPECT_EQ(maps.max_depth()[0], 0.0) << "a refused checkpoint leaves the maps untouched";
 
-    MonitoringPoints probes(s.probes, 0.1, 200.0);
+    MonitoringPoints probes(s.probes, 0.1, 200.0, OutputParams{}.h_threshold);
     CheckpointData m;
     m.integers["monitoring/sample_counts"] = {1, 1};
     m.reals["monitoring/samples"] = std::vector<double>(6, 0.0);  // one sample for two counts

@@ -79,7 +79,7 @@ ChuteRun run_small_chute() {
     OutputParams out;
     r.maps = std::make_unique<HazardMaps>(r.grid, out, 2000.0);
     r.probes = std::make_unique<MonitoringPoints>(
-        std::vector<ProbeLocation>{{"on the plane", 10.25, 5.25, 20, 10}}, 0.1, 2000.0);
+        std::vector<ProbeLocation>{{"on the plane", 10.25, 5.25, 20, 10}}, 0.1, 2000.0, out.h_threshold);
     Simulation sim(r.grid, r.terrain, m, n, r.initial, effective_h_min(n, r.initial, r.terrain));
     sim.add_observer(r.maps.get());
     sim.add_observer(r.probes.get());
@@ -365,14 +365,30 @@ TEST(MonitoringPoints, SeriesSampledAtTheIntervalAndConsistent) {
     const auto& s = r.probes->series().at(0);
     ASSERT_GT(s.size(), 20u);
     EXPECT_EQ(s.front().t, 0.0);
+    const double thr = OutputParams{}.h_threshold;
     double max_h = 0.0;
+    int flowing = 0, films = 0;
     for (std::size_t k = 1; k < s.size(); ++k) {
         EXPECT_GT(s[k].t, s[k - 1].t);
         EXPECT_NEAR(s[k].pressure, 2.0 * s[k].speed * s[k].speed, 1e-9 * (1 + s[k].pressure));
         max_h = std::max(max_h, s[k].h);
+        if (s[k].h >= thr) {
+            // The chute frame's speed: the velocity's magnitude (no vertical part).
+            EXPECT_NEAR(s[k].speed, std::hypot(s[k].u, s[k].v), 1e-12 * (1 + s[k].speed));
+            flowing += s[k].speed > 0.0;
+        } else if (s[k].h > 0.0) {
+            // A film below h_thr, as in the maps: no flowing material, no pressure.
+            EXPECT_EQ(s[k].u, 0.0);
+            EXPECT_EQ(s[k].v, 0.0);
+            EXPECT_EQ(s[k].speed, 0.0);
+            EXPECT_EQ(s[k].pressure, 0.0);
+            ++films;
+        }
     }
-    // The probe sits on the path: the flow passed it.
+    // The probe sits on the path: the flow passed it, and left a film behind.
     EXPECT_GT(max_h, 0.01);
+    EXPECT_GT(flowing, 5);
+    EXPECT_GT(films, 0);
     const std::size_t k = static_cast<std::size_t>(r.probes->points()[0].j) * r.grid.nx + r.probes->points()[0].i;
     EXPECT_LE(max_h, r.maps->max_depth()[k] + 1e-12) << "samples never exceed the per-step maximum";
 }

@@ -1,7 +1,9 @@
 #pragma once
 // Time series of h, u, v, speed and impact pressure at named monitoring points,
 // sampled at every step that crosses a multiple of the sampling interval (and at
-// the start and end), from the cell that contains the point.
+// the start and end), from the cell that contains the point. As in the hazard maps,
+// velocities, speeds and pressures are those of flowing material: zero while the
+// bed-normal thickness is below h_threshold (the thickness itself is always given).
 #include <string>
 #include <vector>
 
@@ -25,7 +27,10 @@ struct ProbeSample {
 
 class MonitoringPoints : public StepObserver {
 public:
-    MonitoringPoints(std::vector<ProbeLocation> points, double interval, double density);
+    // density (kg/m^3) for the impact pressure; h_threshold (m, bed-normal), the maps'
+    // OutputParams::h_threshold.
+    MonitoringPoints(std::vector<ProbeLocation> points, double interval, double density,
+                     double h_threshold);
 
     void on_start(const SimulationView& v) override { sample(v); }
     void on_step(const SimulationView& v) override;
@@ -43,7 +48,7 @@ private:
     void sample(const SimulationView& v);
 
     std::vector<ProbeLocation> points_;
-    double interval_, density_;
+    double interval_, density_, h_threshold_;
     double next_ = 0.0;
     std::vector<std::vector<ProbeSample>> series_;
 };
