@@ -126,7 +126,8 @@ std::string outline_path(const std::vector<std::uint8_t>& mask, const Grid& g, d
     return s.str();
 }
 
-std::string legend_html(const gis::ColorRamp& ramp, const std::string& title, bool no_terrain_data) {
+std::string legend_html(const gis::ColorRamp& ramp, const std::string& title,
+                        bool no_terrain_data) {
     std::ostringstream s;
     s << "<div class=\"legend\"><div class=\"legend-title\">" << html_escape(title) << "</div><ul>";
     if (ramp.kind == gis::RampKind::discrete && !ramp.draw_below_first && !ramp.stops.empty()) {
@@ -173,8 +174,8 @@ std::string map_figure_html(const MapFigure& f, const MapOverlay& o) {
           << "\" fill=\"none\" stroke=\"black\" stroke-width=\"1.5\" stroke-dasharray=\"4 2\"/>";
     s << points_svg(o, d) << scale_bar_svg(o, d);
     if (!o.crs_label.empty()) s << north_arrow_svg(d);
-    s << "</svg></div>" << legend_html(f.ramp, f.legend_title, o.no_terrain_data) << "</div><figcaption>"
-      << html_escape(f.caption) << "</figcaption></figure>";
+    s << "</svg></div>" << legend_html(f.ramp, f.legend_title, o.no_terrain_data)
+      << "</div><figcaption>" << html_escape(f.caption) << "</figcaption></figure>";
     return s.str();
 }
 

@@ -117,7 +117,8 @@ void write_quicklook_png(const std::string& path, const GeoGrid& geo,
 
 QuicklookShade quicklook_shade(const Grid& g, std::vector<double> shade_of_cells,
                                const std::vector<std::uint8_t>& outside_data) {
-    if (shade_of_cells.size() != g.cells() || (!outside_data.empty() && outside_data.size() != g.cells()))
+    if (shade_of_cells.size() != g.cells() ||
+        (!outside_data.empty() && outside_data.size() != g.cells()))
         throw Error(ExitCode::internal, "quicklook_shade: size mismatch");
     QuicklookShade q;
     q.cells_per_pixel = quicklook_cells_per_pixel(g);

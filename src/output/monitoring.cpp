@@ -7,8 +7,8 @@
 
 namespace avalanche {
 
-MonitoringPoints::MonitoringPoints(std::vector<ProbeLocation> points, double interval, double density,
-                                   double h_threshold)
+MonitoringPoints::MonitoringPoints(std::vector<ProbeLocation> points, double interval,
+                                   double density, double h_threshold)
     : points_(std::move(points)),
       interval_(interval),
       density_(density),

@@ -339,8 +339,8 @@ TEST(Quicklook, CellsOutsideTheDemsDataAreHatchedNotShaded) {
         }
     depth[10 * nx + 35] = 3.0;  // flow drawn over a cell without data
     const std::vector<double> shade = hillshade(geo.grid, z);
-    write_quicklook_png_over(tmp.file("masked.png"), geo, depth, quicklook_shade(geo.grid, shade, outside),
-                             depth_ramp(), -9999.0);
+    write_quicklook_png_over(tmp.file("masked.png"), geo, depth,
+                             quicklook_shade(geo.grid, shade, outside), depth_ramp(), -9999.0);
     write_quicklook_png_over(tmp.file("plain.png"), geo, depth, quicklook_shade(geo.grid, shade),
                              depth_ramp(), -9999.0);
     GDALAllRegister();
@@ -351,8 +351,8 @@ TEST(Quicklook, CellsOutsideTheDemsDataAreHatchedNotShaded) {
     // Pixel (band, i, j) with j counted from the south, as the solver's rows.
     const auto pixel = [&](GDALDataset* ds, int band, int i, int j) {
         unsigned char v = 0;
-        EXPECT_EQ(ds->GetRasterBand(band)->RasterIO(GF_Read, i, ny - 1 - j, 1, 1, &v, 1, 1, GDT_Byte, 0,
-                                                    0, nullptr),
+        EXPECT_EQ(ds->GetRasterBand(band)->RasterIO(GF_Read, i, ny - 1 - j, 1, 1, &v, 1, 1,
+                                                    GDT_Byte, 0, 0, nullptr),
                   CE_None);
         return int(v);
     };
@@ -366,7 +366,8 @@ TEST(Quicklook, CellsOutsideTheDemsDataAreHatchedNotShaded) {
             }
             if (i == 35 && j == 10) continue;
             const int expected = static_cast<int>(std::lround(255.0 * no_data_tone(i, j)));
-            for (int b = 1; b <= 3; ++b) ASSERT_EQ(pixel(masked, b, i, j), expected) << i << ", " << j;
+            for (int b = 1; b <= 3; ++b)
+                ASSERT_EQ(pixel(masked, b, i, j), expected) << i << ", " << j;
             (no_data_tone(i, j) == kNoDataLine ? lines : ground) += 1;
             shaded_apart += pixel(plain, 1, i, j) != expected;
         }
@@ -389,7 +390,8 @@ TEST(Quicklook, CellsOutsideTheDemsDataAreHatchedNotShaded) {
     EXPECT_EQ(q.no_data[2], 1);
     EXPECT_EQ(q.no_data[3], 0) << "a block with measured cells shows their terrain";
     EXPECT_EQ(q.no_data[1367 + 2], 1) << "the second row of blocks, cut short";
-    EXPECT_TRUE(quicklook_shade(wide.grid, std::vector<double>(wide.grid.cells(), 0.5)).no_data.empty());
+    EXPECT_TRUE(
+        quicklook_shade(wide.grid, std::vector<double>(wide.grid.cells(), 0.5)).no_data.empty());
 }
 
 // A grid longer than kQuicklookMaxPixels: 3 x 3 cells a pixel. A block's colour is that

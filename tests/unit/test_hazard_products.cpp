@@ -79,7 +79,8 @@ ChuteRun run_small_chute() {
     OutputParams out;
     r.maps = std::make_unique<HazardMaps>(r.grid, out, 2000.0);
     r.probes = std::make_unique<MonitoringPoints>(
-        std::vector<ProbeLocation>{{"on the plane", 10.25, 5.25, 20, 10}}, 0.1, 2000.0, out.h_threshold);
+        std::vector<ProbeLocation>{{"on the plane", 10.25, 5.25, 20, 10}}, 0.1, 2000.0,
+        out.h_threshold);
     Simulation sim(r.grid, r.terrain, m, n, r.initial, effective_h_min(n, r.initial, r.terrain));
     sim.add_observer(r.maps.get());
     sim.add_observer(r.probes.get());
@@ -297,10 +298,13 @@ TEST(HazardMaps, EveryCellFollowsTheRuleOfTheMapsToTheBit) {
                 for (int i = box.i0; i < box.i1; ++i) {
                     // Dry, a film below h_thr, at h_thr exactly, or flowing.
                     const double pick = uniform();
-                    const double h = pick < 0.25   ? 0.0
-                                     : pick < 0.5  ? 0.009 * uniform()
-                                     : pick < 0.55 ? out.h_threshold / terrain.normal_thickness(i, j)
-                                                   : 2.0 * uniform();
+                    double h = 2.0 * uniform();
+                    if (pick < 0.25)
+                        h = 0.0;
+                    else if (pick < 0.5)
+                        h = 0.009 * uniform();
+                    else if (pick < 0.55)
+                        h = out.h_threshold / terrain.normal_thickness(i, j);
                     s.h(i, j) = h;
                     s.hu(i, j) = h * (20.0 * uniform() - 10.0);
                     s.hv(i, j) = h * (20.0 * uniform() - 10.0);
@@ -328,8 +332,10 @@ TEST(HazardMaps, EveryCellFollowsTheRuleOfTheMapsToTheBit) {
         }
         long flowing = 0;
         for (std::size_t k = 0; k < g.cells(); ++k) {
-            ASSERT_EQ(maps.max_depth()[k], depth[k]) << "cell " << k << (metric ? ", DEM frame" : "");
-            ASSERT_EQ(maps.max_speed()[k], speed[k]) << "cell " << k << (metric ? ", DEM frame" : "");
+            ASSERT_EQ(maps.max_depth()[k], depth[k])
+                << "cell " << k << (metric ? ", DEM frame" : "");
+            ASSERT_EQ(maps.max_speed()[k], speed[k])
+                << "cell " << k << (metric ? ", DEM frame" : "");
             const double a = depth[k] >= out.h_threshold ? arrival[k] : HazardMaps::kNotReached;
             ASSERT_EQ(maps.arrival_time(k), a) << "cell " << k << (metric ? ", DEM frame" : "");
             flowing += depth[k] >= out.h_threshold;

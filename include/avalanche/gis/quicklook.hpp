@@ -63,9 +63,9 @@ void write_quicklook_png_over(const std::string& path, const GeoGrid& geo,
 // interpolated terrain there is not terrain anyone measured, and its hillshade (streaks,
 // and steps along the footprint) would read as if it were.
 struct QuicklookShade {
-    int cells_per_pixel = 1;               // f, quicklook_cells_per_pixel of the grid
-    std::vector<double> tone;              // per pixel, in [0, 1]
-    std::vector<std::uint8_t> no_data;     // per pixel, 1 where no terrain data; empty: none
+    int cells_per_pixel = 1;            // f, quicklook_cells_per_pixel of the grid
+    std::vector<double> tone;           // per pixel, in [0, 1]
+    std::vector<std::uint8_t> no_data;  // per pixel, 1 where no terrain data; empty: none
 };
 // `outside_data`: one flag per cell (1 outside the DEM's data), or empty when every cell
 // has data.
