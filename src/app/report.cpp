@@ -78,7 +78,10 @@ void write_report(const std::string& dir, const ProductInputs& in, const std::ve
          "angles are uncertain, so compare several (batch mode) before drawing a line.\n\n";
 
     m << "## Maps\n\nEach map is a GeoTIFF (open it in QGIS; the `.qml` style beside it colours it). "
-         "Thicknesses are measured perpendicular to the slope.\n\n";
+         "Thicknesses are measured perpendicular to the slope.";
+    if (!in.scene.outside_data.empty())
+        m << " " << kNoTerrainDataNote;
+    m << "\n\n";
     for (const auto& f : files) {
         if (f.size() < 4 || f.substr(f.size() - 4) != ".png") continue;
         const std::string base = f.substr(0, f.size() - 4);
@@ -95,7 +98,9 @@ void write_report(const std::string& dir, const ProductInputs& in, const std::ve
               << " | " << fixed(in.maps.max_depth()[k], 2) << " | " << fixed(in.maps.max_speed()[k], 1) << " | "
               << fixed(in.maps.max_pressure(k), 1) << " |\n";
         }
-        m << "\nTime series: `monitoring.csv`, `monitoring.h5`.\n\n";
+        m << "\nTime series: `monitoring.csv`, `monitoring.h5` (speeds and pressures while the flow "
+             "is at least "
+          << out.h_threshold << " m deep, as in the maps).\n\n";
     }
     m << "## Files\n\n";
     for (const auto& f : files) m << "- `" << f << "`\n";

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "avalanche/app/products.hpp"
 #include "avalanche/io/html_text.hpp"
 
 namespace avalanche {
@@ -183,9 +184,7 @@ std::string map_notes_html(const MapOverlay& o) {
     std::ostringstream s;
     s << "<p class=\"note\">How to read the maps: grey is the shaded terrain (light from the "
          "north-west); colour is drawn only where the legend says.";
-    if (o.no_terrain_data)
-        s << " Light grey hatched with diagonals is outside the DEM's data: the terrain there was "
-             "filled in to run the model, and material that reaches it leaves the grid.";
+    if (o.no_terrain_data) s << " " << kNoTerrainDataNote;
     if (!o.release.empty()) s << " The dashed line is the release area.";
     if (!o.points.empty()) s << " White dots are the monitoring points.";
     if (o.crs_label.empty())

@@ -237,6 +237,10 @@ TEST_F(DemProducts, MonitoringSeriesAndSummaryAgreeWithTheMaps) {
         EXPECT_GT(t, previous_t) << "line " << k + 1;
         previous_t = t;
         max_h = std::max(max_h, std::stod(cells[4]));
+        // Below the maps' h_thr (1 cm) the layer is the film a flow leaves: no velocity,
+        // speed or pressure (docs/products.md, "Monitoring points").
+        if (std::stod(cells[4]) < 0.01)
+            for (int c = 5; c <= 8; ++c) EXPECT_EQ(std::stod(cells[c]), 0.0) << "line " << k + 1;
     }
 
     const auto s = read_json_file(out_ + "/summary.json");
@@ -259,6 +263,8 @@ TEST_F(DemProducts, ReportQuotesTheRunoutLengthOfTheSummary) {
     length << std::fixed << std::setprecision(1) << s["runout"]["runout_length_m"].get<double>();
     const std::string report = test::read_text(out_ + "/report.md");
     EXPECT_NE(report.find("| " + length.str() + " m |"), std::string::npos) << length.str();
+    // avaKot's DEM covers 60 % of its grid: the maps' hatch is explained.
+    EXPECT_NE(report.find("hatched with diagonals is outside the DEM's data"), std::string::npos);
 }
 
 TEST_F(DemProducts, ComputationalDemIsNorthUpLikeTheSource) {

@@ -16,6 +16,12 @@
 
 namespace avalanche {
 
+// What the quick-looks' hatch means (gis::QuicklookShade), in the words both reports print
+// under their maps when the run's DEM has cells outside its data.
+inline constexpr const char* kNoTerrainDataNote =
+    "Light grey hatched with diagonals is outside the DEM's data: the terrain there was "
+    "filled in to run the model, and material that reaches it leaves the grid.";
+
 struct ProductInputs {
     const PreparedScene& scene;  // its initial state may have moved into the simulation
     // Cells that held material at the start (interior, row-major, solver orientation).
