@@ -239,8 +239,11 @@ TEST_F(DemProducts, MonitoringSeriesAndSummaryAgreeWithTheMaps) {
         max_h = std::max(max_h, std::stod(cells[4]));
         // Below the maps' h_thr (1 cm) the layer is the film a flow leaves: no velocity,
         // speed or pressure (docs/products.md, "Monitoring points").
-        if (std::stod(cells[4]) < 0.01)
-            for (int c = 5; c <= 8; ++c) EXPECT_EQ(std::stod(cells[c]), 0.0) << "line " << k + 1;
+        if (std::stod(cells[4]) < 0.01) {
+            for (int c = 5; c <= 8; ++c) {
+                EXPECT_EQ(std::stod(cells[c]), 0.0) << "line " << k + 1;
+            }
+        }
     }
 
     const auto s = read_json_file(out_ + "/summary.json");
