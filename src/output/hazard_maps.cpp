@@ -82,8 +82,9 @@ void HazardMaps::restore(const CheckpointData& c) {
 }
 
 // Cells with enough of them share the work between threads: the maps are a pass
-// over the cells of every step.
-constexpr std::size_t kMinCellsPerThreadedPass = 20000;
+// over the cells of every step (a larger bound than the solver's passes, whose cells
+// cost more).
+constexpr std::size_t kMinCellsPerThreadedMapPass = 20000;
 
 // The cells of `boxes` (rows of the box the view holds), row by row.
 void HazardMaps::accumulate(const SimulationView& v, std::span<const ActiveBox> boxes) {
@@ -96,7 +97,7 @@ void HazardMaps::accumulate(const SimulationView& v, std::span<const ActiveBox> 
         for (int j = b.j0; j < b.j1; ++j) rows_.push_back({j, b.i0, b.i1});
     }
     const int n = static_cast<int>(rows_.size());
-#pragma omp parallel for schedule(static) if (cells >= kMinCellsPerThreadedPass)
+#pragma omp parallel for schedule(static) if (cells >= kMinCellsPerThreadedMapPass)
     for (int q = 0; q < n; ++q) {
         const auto [j, i0, i1] = rows_[static_cast<std::size_t>(q)];
         accumulate_row(v, j, i0, i1);
@@ -111,7 +112,7 @@ void HazardMaps::accumulate_row(const SimulationView& v, int j, int i0, int i1) 
         const std::size_t k = static_cast<std::size_t>(j) * grid_.nx + i;
         // Speeds and pressures of the thin-layer film below h_thr are not hazard:
         // they are the numerical wet/dry layer, not flowing material.
-        if (hn < thr) {
+        if (!is_flowing(hn, thr)) {
             max_depth_[k] = std::max(max_depth_[k], hn);
             continue;
         }

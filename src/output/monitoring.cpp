@@ -20,12 +20,11 @@ void MonitoringPoints::sample(const SimulationView& v) {
         const int i = points_[p].i, j = points_[p].j;
         const double h = v.state.h(i, j);
         const double hn = h * v.terrain.normal_thickness(i, j);
-        // The maps' rule (HazardMaps): a layer thinner than h_thr is the numerical wet/dry
-        // layer a flow leaves, not flowing material. Such layers slide on at the speed of
-        // the track (about 20 m/s on the demo's): shown, they drew 110-140 kPa at the
-        // demo's point for the last 16 s of its run, under a layer thinning from 6 to
-        // 0.05 mm.
-        const bool flowing = hn >= h_threshold_;
+        // The maps' rule (is_flowing): the layers a flow leaves thinner than h_thr slide on
+        // at the speed of the track (about 20 m/s on the demo's): shown, they drew
+        // 110-140 kPa at the demo's point for the last 16 s of its run, under a layer
+        // thinning from 6 to 0.05 mm.
+        const bool flowing = is_flowing(hn, h_threshold_);
         const double u = flowing ? v.state.hu(i, j) / h : 0.0;
         const double vv = flowing ? v.state.hv(i, j) / h : 0.0;
         const double speed = flowing ? true_speed(v.state, v.terrain, i, j) : 0.0;

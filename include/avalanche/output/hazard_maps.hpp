@@ -29,6 +29,11 @@ HazardClass classify(double max_depth, double max_pressure_kpa, const OutputPara
 // Along-surface speed of a cell from the state (0 for a dry cell).
 double true_speed(const State& s, const TerrainFields& t, int i, int j);
 
+// Whether a layer of bed-normal thickness hn counts as flowing material, whose speed and
+// pressure the maps (and the monitoring series) take in: at least h_threshold. A thinner
+// layer is the numerical wet/dry layer a flow leaves; only its depth counts.
+[[nodiscard]] inline bool is_flowing(double hn, double h_threshold) { return !(hn < h_threshold); }
+
 // Storage: every map starts as untouched zeros (CellVector, core/field_storage.hpp), so
 // on a large DEM only the pages of cells the flow reaches are ever made -- a small
 // release on a 2000 x 2000 grid no longer writes 32 B/cell of maps it never fills. Hence
