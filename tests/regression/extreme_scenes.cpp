@@ -163,6 +163,11 @@ Scene make_scene(const Case& c) {
     s.numerics.h_min = c.h_min;
     build(s, c);
     s.numerics.output_interval = s.numerics.t_end;
+    measure_release(s);
+    return s;
+}
+
+void measure_release(Scene& s) {
     // Drop: highest release surface above the lowest bed. The surface height uses
     // h g / g_n (exact vertical extent in the chute frame, an over-estimate in the DEM
     // frame, where h is already vertical): the bound stays an upper bound.
@@ -178,7 +183,6 @@ Scene make_scene(const Case& c) {
             s.u0 = std::max(s.u0, true_speed(s, s.initial, i, j));
         }
     s.drop = std::max(0.0, top - bottom);
-    return s;
 }
 
 double speed_bound(const Scene& s) {

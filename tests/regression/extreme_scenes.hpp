@@ -54,6 +54,10 @@ struct Scene {
 
 Scene make_scene(const Case& c);
 
+// Sets the scene's drop, u0 and h0 from its terrain and initial state (make_scene
+// calls it; scenes built elsewhere call it once their initial state is set).
+void measure_release(Scene& s);
+
 // Free-fall bound on any speed in the scene (m/s):
 //   sqrt(u0^2 + 2 g drop) + 2 sqrt(k_max g h0).
 // The first term is a point mass falling the whole drop without friction. The

@@ -1,0 +1,24 @@
+#pragma once
+// Random scenes for the extreme-case matrix's random sweep (test_random_extremes.cpp).
+// The matrix (extreme_scenes.hpp) moves one parameter at a time from a baseline on
+// idealised terrain; these scenes draw every parameter at once over the same ranges,
+// on rough DEMs with cliffs, pits and walls, several releases, some of them moving, so
+// that corners the one-at-a-time sweeps do not reach meet: a 200 m release with
+// h_min 1e-8 at Courant 0.5 on a 100 m step, a frictionless film on a wall boundary.
+// A seed names a scene: the same seed gives the same scene on every platform (the
+// draws use only mt19937_64's integers, whose sequence the standard fixes).
+#include <cstdint>
+#include <string>
+
+#include "extreme_scenes.hpp"
+
+namespace avalanche::extremes {
+
+struct RandomScene {
+    Scene scene;
+    std::string description;  // every drawn parameter, to rebuild the case by hand
+};
+
+RandomScene random_scene(std::uint64_t seed);
+
+}  // namespace avalanche::extremes
