@@ -12,7 +12,12 @@ namespace avalanche {
 
 namespace {
 
-// First and second derivatives of z at cell (i, j) by finite differences.
+// First and second derivatives of z at cell (i, j) by finite differences. Each is
+// written so that mirroring the DEM in x or y gives the mirrored derivative to the
+// bit: the two outer values of a second difference are added before the centre is
+// taken off, and the mixed difference adds its diagonal pairs before subtracting, so
+// no sum depends on which side comes first (a mirrored scene then gives the mirrored
+// run to the bit; test_random_extremes.cpp).
 struct Derivatives {
     double zx, zy, zxx, zxy, zyy;
 };
@@ -27,7 +32,7 @@ Derivatives derivatives_at(const Grid& g, const Field2D& z, int i, int j) {
     // x: central inside, one-sided at the edges; a single column has no slope.
     if (g.nx >= 3) {
         const int ic = std::clamp(i, 1, g.nx - 2);  // second differences from the nearest interior
-        d.zxx = (at(ic + 1, j) - 2.0 * at(ic, j) + at(ic - 1, j)) / (g.dx * g.dx);
+        d.zxx = ((at(ic + 1, j) + at(ic - 1, j)) - 2.0 * at(ic, j)) / (g.dx * g.dx);
     }
     if (g.nx >= 2) {
         const int il = std::max(i - 1, 0), ir = std::min(i + 1, g.nx - 1);
@@ -35,7 +40,7 @@ Derivatives derivatives_at(const Grid& g, const Field2D& z, int i, int j) {
     }
     if (g.ny >= 3) {
         const int jc = std::clamp(j, 1, g.ny - 2);
-        d.zyy = (at(i, jc + 1) - 2.0 * at(i, jc) + at(i, jc - 1)) / (g.dy * g.dy);
+        d.zyy = ((at(i, jc + 1) + at(i, jc - 1)) - 2.0 * at(i, jc)) / (g.dy * g.dy);
     }
     if (g.ny >= 2) {
         const int jl = std::max(j - 1, 0), jr = std::min(j + 1, g.ny - 1);
@@ -44,7 +49,8 @@ Derivatives derivatives_at(const Grid& g, const Field2D& z, int i, int j) {
     if (g.nx >= 2 && g.ny >= 2) {
         const int il = std::max(i - 1, 0), ir = std::min(i + 1, g.nx - 1);
         const int jl = std::max(j - 1, 0), jr = std::min(j + 1, g.ny - 1);
-        d.zxy = (at(ir, jr) - at(il, jr) - at(ir, jl) + at(il, jl)) / ((ir - il) * g.dx * (jr - jl) * g.dy);
+        d.zxy = ((at(ir, jr) + at(il, jl)) - (at(il, jr) + at(ir, jl))) /
+                ((ir - il) * g.dx * (jr - jl) * g.dy);
     }
     return d;
 }
@@ -79,11 +85,29 @@ void extend_to_ghosts_of(Field2D& f, int i0, int i1, int j0, int j1) {
         }
 }
 
+// The mean of f over cell (i, j) and its eight neighbours in the grid. The values are
+// added in mirror pairs (north with south, east with west, each diagonal with its
+// opposite), so that the sum of a mirrored field is the same to the bit; a neighbour
+// outside the grid adds an exact 0 and is not counted.
+template <class F>
+double mean_of_neighbours(const Grid& grid, const F& f, int i, int j) {
+    int n = 0;
+    const auto value = [&](int di, int dj) {
+        const int ii = i + di, jj = j + dj;
+        if (ii < 0 || jj < 0 || ii >= grid.nx || jj >= grid.ny) return 0.0;
+        ++n;
+        return f(ii, jj);
+    };
+    const double sides = (value(0, 1) + value(0, -1)) + (value(1, 0) + value(-1, 0));
+    const double corners = (value(1, 1) + value(-1, -1)) + (value(-1, 1) + value(1, -1));
+    return (value(0, 0) + (sides + corners)) / n;
+}
+
 // The DEM frame's coefficients of the cells [i0, i1) x [j0, j1), from t.elevation.
 // The smoothed curvature of a cell is the mean of the raw curvature of its neighbours
-// in the grid, summed in the same order as over the whole grid at once; the raw
-// curvature is computed in the same pass as the other coefficients, over the range and
-// the one cell around it the smoothing reads (each cell's derivatives once).
+// in the grid (mean_of_neighbours), summed in the same order as over the whole grid at once; the
+// raw curvature is computed in the same pass as the other coefficients, over the range and the one
+// cell around it the smoothing reads (each cell's derivatives once).
 void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const DemFrameOptions& options,
                     int i0, int i1, int j0, int j1) {
     const int m = t.has_curvature && options.smooth_curvature ? 1 : 0;
@@ -122,16 +146,7 @@ void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const De
                         (*out[c])(i, j) = at(i, j);
                         continue;
                     }
-                    double sum = 0.0;
-                    int n = 0;
-                    for (int dj = -1; dj <= 1; ++dj)
-                        for (int di = -1; di <= 1; ++di) {
-                            const int ii = i + di, jj = j + dj;
-                            if (ii < 0 || jj < 0 || ii >= grid.nx || jj >= grid.ny) continue;
-                            sum += at(ii, jj);
-                            ++n;
-                        }
-                    (*out[c])(i, j) = sum / n;
+                    (*out[c])(i, j) = mean_of_neighbours(grid, at, i, j);
                 }
         }
     }

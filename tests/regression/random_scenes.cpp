@@ -182,4 +182,40 @@ RandomScene random_scene(std::uint64_t seed) {
     return out;
 }
 
+Scene mirrored(const Scene& s, Axis axis) {
+    Scene m = s;
+    const Grid& g = s.grid;
+    const auto mi = [&](int i) { return axis == Axis::x ? g.nx - 1 - i : i; };
+    const auto mj = [&](int j) { return axis == Axis::y ? g.ny - 1 - j : j; };
+    std::vector<double> z(g.cells());
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i)
+            z[static_cast<std::size_t>(mj(j)) * g.nx + mi(i)] = s.terrain.elevation(i, j);
+    m.terrain = dem_terrain(g, z, kGravity);
+    m.terrain.ensure_everywhere();
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+            m.initial.h(mi(i), mj(j)) = s.initial.h(i, j);
+            m.initial.hu(mi(i), mj(j)) = axis == Axis::x ? -s.initial.hu(i, j) : s.initial.hu(i, j);
+            m.initial.hv(mi(i), mj(j)) = axis == Axis::y ? -s.initial.hv(i, j) : s.initial.hv(i, j);
+        }
+    return m;
+}
+
+bool mirror_images(const State& a, const State& b, Axis axis) {
+    const int nx = a.h.nx(), ny = a.h.ny();
+    // Equal values, not equal bits: the mirror of a momentum of +0 may be -0 (a product
+    // with a reversed velocity), which is the same state.
+    const auto same = [](double x, double y) { return x == y; };
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            const int ii = axis == Axis::x ? nx - 1 - i : i, jj = axis == Axis::y ? ny - 1 - j : j;
+            const double hu = axis == Axis::x ? -b.hu(ii, jj) : b.hu(ii, jj);
+            const double hv = axis == Axis::y ? -b.hv(ii, jj) : b.hv(ii, jj);
+            if (!same(a.h(i, j), b.h(ii, jj)) || !same(a.hu(i, j), hu) || !same(a.hv(i, j), hv))
+                return false;
+        }
+    return true;
+}
+
 }  // namespace avalanche::extremes

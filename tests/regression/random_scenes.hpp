@@ -21,4 +21,14 @@ struct RandomScene {
 
 RandomScene random_scene(std::uint64_t seed);
 
+// The scene mirrored across the grid's vertical centre line (Axis::x: i -> nx-1-i, u
+// reversed) or its horizontal one (Axis::y: j -> ny-1-j, v reversed): terrain, release
+// and velocities. Its terrain is made at once, the scene's on demand (the same values).
+enum class Axis { x, y };
+Scene mirrored(const Scene& s, Axis axis);
+
+// Whether a state of `s` and a state of mirrored(s, axis) are mirror images: every
+// value equal (-0 equal to +0), the reversed momentum with its sign changed.
+bool mirror_images(const State& a, const State& b, Axis axis);
+
 }  // namespace avalanche::extremes

@@ -1,11 +1,12 @@
 // The extreme-case matrix's random sweep (issue "Speed against accuracy", item 5): scenes
-// that draw every parameter at once (random_scenes.hpp), each run two ways:
+// that draw every parameter at once (random_scenes.hpp), each run three ways:
 //   - FiniteNonNegativeConservativeAndBelowFreeFall: the matrix's checks (no NaN/Inf,
 //     no negative depth, mass conserved to round-off with the outflow counted, every
 //     speed below the scene's free-fall bound), through Simulation::run;
-//   - BandsGiveTheWholeBoxsRunToTheBit: the advection's bands against the whole box.
+//   - BandsGiveTheWholeBoxsRunToTheBit: the advection's bands against the whole box;
+//   - MirroredSceneGivesTheMirroredRun: the scene mirrored in x and in y.
 //
-// CI runs seeds 1 to 200 (about 10 s of the two on one thread). A longer sweep,
+// CI runs seeds 1 to 200 (about 20 s of the three on one thread). A longer sweep,
 // `cmake --build build --target random-extremes-study` (5000 seeds), or
 //   AVALANCHE_RANDOM_EXTREMES=5000 build/tests/regression/test_regression
 //       --gtest_filter='Seeds/RandomSweep*'
@@ -37,6 +38,8 @@ constexpr std::uint64_t kCiSeeds = 200;
 // Steps of each band comparison: enough for fronts to cross small grids and for films
 // to settle behind them.
 constexpr int kBandSteps = 400;
+// Steps of each mirror comparison (a first difference shows within a few steps).
+constexpr int kMirrorSteps = 200;
 
 std::vector<std::uint64_t> seeds() {
     std::uint64_t count = kCiSeeds;
@@ -111,6 +114,36 @@ TEST_P(RandomSweep, BandsGiveTheWholeBoxsRunToTheBit) {
     std::cout << "[random bands] seed " << GetParam() << ": " << bands.steps
               << " steps, bands over box "
               << static_cast<double>(bands.band_cells) / bands.box_cells << "\n";
+}
+
+// A scene mirrored across either centre line must give the mirrored run, every value of
+// the state equal after every step: the kernels pair their sums so that a mirrored
+// problem adds the same numbers (docs/numerics.md, "Symmetry and determinism"), and so
+// must the terrain's derivatives (dem_frame.cpp), the bands, the thin-layer rule's
+// search, the regimes and the faces held at rest, which the random scenes all reach.
+TEST_P(RandomSweep, MirroredSceneGivesTheMirroredRun) {
+    const RandomScene r = random_scene(GetParam());
+    const Scene& scene = r.scene;
+    SCOPED_TRACE(r.description);
+    for (Axis axis : {Axis::x, Axis::y}) {
+        const Scene mirror = mirrored(scene, axis);
+        const double h_min = effective_h_min(scene.numerics, scene.initial, scene.terrain);
+        ASSERT_EQ(h_min, effective_h_min(mirror.numerics, mirror.initial, mirror.terrain));
+        State a = scene.initial, b = mirror.initial;
+        Stepper sa(scene.grid, scene.terrain, scene.material, scene.numerics, h_min);
+        Stepper sb(mirror.grid, mirror.terrain, mirror.material, mirror.numerics, h_min);
+        sa.reset_active_box(a);
+        sb.reset_active_box(b);
+        for (int k = 0; k < kMirrorSteps; ++k) {
+            const double dt = sa.stable_dt(a);
+            ASSERT_EQ(dt, sb.stable_dt(b)) << "step " << k;
+            if (!std::isfinite(dt)) break;
+            sa.step(a, dt);
+            sb.step(b, dt);
+            ASSERT_TRUE(mirror_images(a, b, axis))
+                << "mirrored in " << (axis == Axis::x ? "x" : "y") << ", step " << k;
+        }
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, RandomSweep, ::testing::ValuesIn(seeds()),
