@@ -125,8 +125,11 @@ double effective_h_min(const NumericsParams& n, const State& initial, const Terr
     if (n.h_min > 0.0) return n.h_min;
     double deepest = 0.0;
     // The terrain of released cells only: elsewhere h = 0, and reading a terrain made on
-    // demand (terrain.hpp) there would touch memory no run needs.
+    // demand (terrain.hpp) there would touch memory no run needs. Made here, not left to
+    // whoever built the state: a state set cell by cell, not by state_at_rest, found
+    // the normal thicknesses of tiles not yet made at zero, and h_min_relative alone.
     const ActiveBox b = holding.clipped(initial.h.nx(), initial.h.ny());
+    if (!b.empty()) terrain.ensure(b.i0, b.i1, b.j0, b.j1);
     for (int j = b.j0; j < b.j1; ++j)
         for (int i = b.i0; i < b.i1; ++i)
             if (initial.h(i, j) > 0.0)

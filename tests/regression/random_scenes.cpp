@@ -202,6 +202,26 @@ Scene mirrored(const Scene& s, Axis axis) {
     return m;
 }
 
+Scene cropped(const Scene& s, const ActiveBox& box) {
+    Scene c = s;
+    const Grid& g = s.grid;
+    c.grid = Grid{box.i1 - box.i0,      box.j1 - box.j0,     g.dx, g.dy,
+                  g.x0 + box.i0 * g.dx, g.y0 + box.j0 * g.dy};
+    std::vector<double> z(c.grid.cells());
+    c.initial = State(c.grid);
+    for (int j = 0; j < c.grid.ny; ++j)
+        for (int i = 0; i < c.grid.nx; ++i) {
+            z[static_cast<std::size_t>(j) * c.grid.nx + i] =
+                s.terrain.elevation(i + box.i0, j + box.j0);
+            c.initial.h(i, j) = s.initial.h(i + box.i0, j + box.j0);
+            c.initial.hu(i, j) = s.initial.hu(i + box.i0, j + box.j0);
+            c.initial.hv(i, j) = s.initial.hv(i + box.i0, j + box.j0);
+        }
+    c.terrain = dem_terrain(c.grid, z, kGravity);
+    c.terrain.ensure_everywhere();
+    return c;
+}
+
 bool mirror_images(const State& a, const State& b, Axis axis) {
     const int nx = a.h.nx(), ny = a.h.ny();
     // Equal values, not equal bits: the mirror of a momentum of +0 may be -0 (a product

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <string>
 
+#include "avalanche/numerics/active_box.hpp"
 #include "extreme_scenes.hpp"
 
 namespace avalanche::extremes {
@@ -26,6 +27,11 @@ RandomScene random_scene(std::uint64_t seed);
 // and velocities. Its terrain is made at once, the scene's on demand (the same values).
 enum class Axis { x, y };
 Scene mirrored(const Scene& s, Axis axis);
+
+// The scene on the cells of `box` only: a grid of the box's size at the box's place,
+// the elevations, the release and the velocities of those cells. Its terrain is made at
+// once.
+Scene cropped(const Scene& s, const ActiveBox& box);
 
 // Whether a state of `s` and a state of mirrored(s, axis) are mirror images: every
 // value equal (-0 equal to +0), the reversed momentum with its sign changed.

@@ -56,6 +56,23 @@ TEST(InitialBox, StateAtRestGivesTheBoxOfTheReleasedCells) {
     EXPECT_TRUE(none.empty());
 }
 
+// A state set cell by cell on a terrain made on demand, whose tiles no one has made yet:
+// the automatic thin-layer depth is still h_min_relative x the deepest bed-normal
+// thickness, not h_min_relative alone (the normal thickness of a tile not made reads 0).
+TEST(InitialBox, AutomaticThinLayerDepthMakesTheTerrainItReads) {
+    const Grid g{40, 30, 5.0, 5.0};
+    const TerrainFields made = bumpy_plane(g), fresh = bumpy_plane(g);
+    made.ensure_everywhere();
+    State s(g);
+    s.h(30, 20) = 2.0;
+    s.h(31, 20) = 1.0;
+    NumericsParams n;
+    const double expected = n.h_min_relative * 2.0 * made.normal_thickness(30, 20);
+    EXPECT_LT(made.normal_thickness(30, 20), 1.0);  // a slope: thinner than vertical
+    EXPECT_TRUE(same_bits(effective_h_min(n, s, fresh), expected));
+    EXPECT_TRUE(same_bits(effective_h_min(n, s, bumpy_plane(g), ActiveBox{30, 32, 20, 21}), expected));
+}
+
 TEST(InitialBox, ItsReadersGiveTheWholeGridsValues) {
     const Grid g{40, 30, 5.0, 5.0};
     const TerrainFields t = bumpy_plane(g);
