@@ -17,6 +17,8 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kGravity = 9.81;
 constexpr double kCliff = 100.0;  // m, the matrix's cliff between neighbouring cells
+// In the order of enum Limiter (parameters.hpp), for the scene's description.
+constexpr const char* kLimiterNames[] = {"superbee", "van_leer", "van_albada", "minmod"};
 
 // Draws from the engine's integers only: std::uniform_real_distribution's algorithm
 // is the library's, so its values could differ between standard libraries.
@@ -164,9 +166,10 @@ RandomScene random_scene(std::uint64_t seed) {
     s.grid = Grid{nx, ny, dx, dx, 0.0, 0.0};
     what << m.delta_deg << "/" << m.phi_deg << " deg "
          << (m.earth_pressure == EarthPressureModel::savage_hutter ? "savage-hutter" : "isotropic")
-         << ", " << (n.scheme == Scheme::waf ? "waf" : "godunov") << " limiter "
-         << static_cast<int>(n.limiter) << " " << (n.splitting == Splitting::lsl ? "lsl" : "sls")
-         << " C " << n.cfl << ", h_min " << n.h_min << ", rest_faces " << n.rest_faces << ", "
+         << ", " << (n.scheme == Scheme::waf ? "waf" : "godunov") << " "
+         << kLimiterNames[static_cast<int>(n.limiter)] << " "
+         << (n.splitting == Splitting::lsl ? "lsl" : "sls") << " C " << n.cfl << ", h_min "
+         << n.h_min << ", rest_faces " << n.rest_faces << ", "
          << (n.boundary == Boundary::open ? "open" : "wall") << " edges, " << n.source_substeps
          << " source substeps, margin " << n.active_margin << "; grid " << nx << " x " << ny
          << " of " << dx << " m, h0 " << h0 << " m; ";

@@ -56,14 +56,29 @@ std::vector<std::uint64_t> seeds() {
     return out;
 }
 
-class RandomSweep : public ::testing::TestWithParam<std::uint64_t> {};
+// Every test draws the seed's scene, traces its parameters into any failure and knows
+// the scene's automatic thin-layer depth.
+class RandomSweep : public ::testing::TestWithParam<std::uint64_t> {
+  protected:
+    void SetUp() override {
+        drawn_ = random_scene(GetParam());
+        trace_.emplace(__FILE__, __LINE__, drawn_.description);
+        h_min_ = effective_h_min(scene().numerics, scene().initial, scene().terrain);
+    }
+    const Scene& scene() const { return drawn_.scene; }
+    const std::string& description() const { return drawn_.description; }
+    double h_min() const { return h_min_; }
+
+  private:
+    RandomScene drawn_;
+    std::optional<::testing::ScopedTrace> trace_;
+    double h_min_ = 0.0;
+};
 
 TEST_P(RandomSweep, FiniteNonNegativeConservativeAndBelowFreeFall) {
-    const RandomScene r = random_scene(GetParam());
-    SCOPED_TRACE(r.description);
-    EXPECT_TRUE(run_and_check(r.scene, "[random extremes] seed " + std::to_string(GetParam())));
+    EXPECT_TRUE(run_and_check(scene(), "[random extremes] seed " + std::to_string(GetParam())));
     if (::testing::Test::HasFailure())
-        std::cout << "[random extremes] failed: " << r.description << "\n";
+        std::cout << "[random extremes] failed: " << description() << "\n";
 }
 
 // The advection's bands (Stepper::make_bands: each only as wide as its rows' material
@@ -72,10 +87,8 @@ TEST_P(RandomSweep, FiniteNonNegativeConservativeAndBelowFreeFall) {
 // faces held at rest, step after step. The random scenes put films, towers, pits, walls
 // and several releases where test_active_bands.cpp has one valley.
 TEST_P(RandomSweep, BandsGiveTheWholeBoxsRunToTheBit) {
-    const RandomScene r = random_scene(GetParam());
-    const Scene& scene = r.scene;
-    SCOPED_TRACE(r.description);
-    const double h_min = effective_h_min(scene.numerics, scene.initial, scene.terrain);
+    const Scene& scene = this->scene();
+    const double h_min = this->h_min();
     struct Run {
         State state;
         double outflow = 0.0;
@@ -128,12 +141,10 @@ TEST_P(RandomSweep, BandsGiveTheWholeBoxsRunToTheBit) {
 // must the terrain's derivatives (dem_frame.cpp), the bands, the thin-layer rule's
 // search, the regimes and the faces held at rest, which the random scenes all reach.
 TEST_P(RandomSweep, MirroredSceneGivesTheMirroredRun) {
-    const RandomScene r = random_scene(GetParam());
-    const Scene& scene = r.scene;
-    SCOPED_TRACE(r.description);
+    const Scene& scene = this->scene();
     for (Axis axis : {Axis::x, Axis::y}) {
         const Scene mirror = mirrored(scene, axis);
-        const double h_min = effective_h_min(scene.numerics, scene.initial, scene.terrain);
+        const double h_min = this->h_min();
         ASSERT_EQ(h_min, effective_h_min(mirror.numerics, mirror.initial, mirror.terrain));
         State a = scene.initial, b = mirror.initial;
         Stepper sa(scene.grid, scene.terrain, scene.material, scene.numerics, h_min);
@@ -159,11 +170,9 @@ TEST_P(RandomSweep, MirroredSceneGivesTheMirroredRun) {
 // reached the grid's edges the crop keeps them (then the comparison is of the same
 // grid there; a seed whose boxes reached every edge has nothing to cut).
 TEST_P(RandomSweep, CropAroundTheFlowGivesTheSameRun) {
-    const RandomScene r = random_scene(GetParam());
-    const Scene& scene = r.scene;
-    SCOPED_TRACE(r.description);
+    const Scene& scene = this->scene();
     const Grid& g = scene.grid;
-    const double h_min = effective_h_min(scene.numerics, scene.initial, scene.terrain);
+    const double h_min = this->h_min();
     State whole = scene.initial;
     Stepper sw(g, scene.terrain, scene.material, scene.numerics, h_min);
     sw.reset_active_box(whole);
@@ -206,10 +215,8 @@ TEST_P(RandomSweep, CropAroundTheFlowGivesTheSameRun) {
 // the faces held at rest besides the state and the loop (Simulation::resume); the random
 // scenes reach every option whose carried state a resume must restore.
 TEST_P(RandomSweep, ResumedFromACheckpointGivesTheSameRun) {
-    const RandomScene r = random_scene(GetParam());
-    const Scene& scene = r.scene;
-    SCOPED_TRACE(r.description);
-    const double h_min = effective_h_min(scene.numerics, scene.initial, scene.terrain);
+    const Scene& scene = this->scene();
+    const double h_min = this->h_min();
     struct Saved {
         LoopState loop;
         std::vector<double> h, hu, hv;
