@@ -38,9 +38,9 @@ using avalanche::test::same_bits;
 namespace {
 
 constexpr std::uint64_t kCiSeeds = 200;
-// Steps of each band comparison: enough for fronts to cross small grids and for films
-// to settle behind them.
-constexpr int kBandSteps = 400;
+// Steps of the comparisons on the stepper (bands, crop): enough for fronts to cross
+// small grids and for films to settle behind them.
+constexpr int kStepperSteps = 400;
 // Cells around the flow's boxes a crop keeps: the stencils read 3 beyond a box, the
 // terrain's derivatives and their smoothing one more each.
 constexpr int kCropMargin = 6;
@@ -104,7 +104,7 @@ TEST_P(RandomSweep, BandsGiveTheWholeBoxsRunToTheBit) {
         stepper.set_whole_box_advection(whole_box);
         stepper.reset_active_box(out.state);
         double t = 0.0;
-        for (; out.steps < kBandSteps && t < scene.numerics.t_end; ++out.steps) {
+        for (; out.steps < kStepperSteps && t < scene.numerics.t_end; ++out.steps) {
             // No finite step: the material is at rest (Simulation::run ends there).
             const double dt = stepper.stable_dt(out.state);
             if (!std::isfinite(dt)) break;
@@ -178,7 +178,7 @@ TEST_P(RandomSweep, CropAroundTheFlowGivesTheSameRun) {
     sw.reset_active_box(whole);
     ActiveBox reached = sw.active_box();
     std::vector<double> steps;
-    for (int k = 0; k < kBandSteps; ++k) {
+    for (int k = 0; k < kStepperSteps; ++k) {
         const double dt = sw.stable_dt(whole);
         if (!std::isfinite(dt)) break;
         sw.step(whole, dt);
