@@ -8,7 +8,7 @@
 //   - CropAroundTheFlowGivesTheSameRun: the scene cut down to where its flow went;
 //   - ResumedFromACheckpointGivesTheSameRun: a run resumed from its first checkpoint.
 //
-// CI runs seeds 1 to 200 (about 35 s of the five on one thread). A longer sweep,
+// CI runs seeds 1 to 200 (about 80 s of test time for the five checks). A longer sweep,
 // `cmake --build build --target random-extremes-study` (5000 seeds), or
 //   AVALANCHE_RANDOM_EXTREMES=5000 build/tests/regression/test_regression
 //       --gtest_filter='Seeds/RandomSweep*'
