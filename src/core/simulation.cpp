@@ -128,10 +128,17 @@ double effective_h_min(const NumericsParams& n, const State& initial, const Terr
     // demand (terrain.hpp) there would touch memory no run needs. Made here, not left to
     // whoever built the state: a state set cell by cell, not by state_at_rest, found
     // the normal thicknesses of tiles not yet made at zero, and h_min_relative alone.
+    // Only the box of the released cells is made, not all of `holding` (the whole grid
+    // for the overload without it).
     const ActiveBox b = holding.clipped(initial.h.nx(), initial.h.ny());
-    if (!b.empty()) terrain.ensure(b.i0, b.i1, b.j0, b.j1);
+    ActiveBox released;
     for (int j = b.j0; j < b.j1; ++j)
         for (int i = b.i0; i < b.i1; ++i)
+            if (initial.h(i, j) > 0.0) released = released.united(ActiveBox{i, i + 1, j, j + 1});
+    if (released.empty()) return n.h_min_relative;
+    terrain.ensure(released.i0, released.i1, released.j0, released.j1);
+    for (int j = released.j0; j < released.j1; ++j)
+        for (int i = released.i0; i < released.i1; ++i)
             if (initial.h(i, j) > 0.0)
                 deepest = std::max(deepest, initial.h(i, j) * terrain.normal_thickness(i, j));
     return deepest > 0.0 ? n.h_min_relative * deepest : n.h_min_relative;

@@ -70,7 +70,21 @@ TEST(InitialBox, AutomaticThinLayerDepthMakesTheTerrainItReads) {
     const double expected = n.h_min_relative * 2.0 * made.normal_thickness(30, 20);
     EXPECT_LT(made.normal_thickness(30, 20), 1.0);  // a slope: thinner than vertical
     EXPECT_TRUE(same_bits(effective_h_min(n, s, fresh), expected));
-    EXPECT_TRUE(same_bits(effective_h_min(n, s, bumpy_plane(g), ActiveBox{30, 32, 20, 21}), expected));
+    EXPECT_TRUE(
+        same_bits(effective_h_min(n, s, bumpy_plane(g), ActiveBox{30, 32, 20, 21}), expected));
+
+    // It makes the terrain of the released cells only, not of the whole grid it searches:
+    // a release in one corner of a grid of 5 x 5 tiles makes one tile (and its 3 x 3 halo
+    // of curvature cells stays inside it).
+    const Grid large{5 * TerrainTiles::kTileCells, 5 * TerrainTiles::kTileCells, 5.0, 5.0};
+    const TerrainFields untouched = bumpy_plane(large), whole = bumpy_plane(large);
+    whole.ensure_everywhere();
+    State corner(large);
+    corner.h(10, 10) = 1.0;
+    EXPECT_TRUE(same_bits(effective_h_min(n, corner, untouched),
+                          n.h_min_relative * whole.normal_thickness(10, 10)));
+    ASSERT_NE(untouched.on_demand, nullptr);
+    EXPECT_EQ(untouched.on_demand->tiles_made(), 1u);
 }
 
 TEST(InitialBox, ItsReadersGiveTheWholeGridsValues) {
