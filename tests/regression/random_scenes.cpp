@@ -1,6 +1,7 @@
 #include "random_scenes.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -185,8 +186,29 @@ RandomScene random_scene(std::uint64_t seed) {
     return out;
 }
 
+namespace {
+
+// A scene with s's material, numerics and bounds on grid g, its terrain made at once
+// from z and its initial state empty (the caller fills it). Not a copy of s with parts
+// replaced: copying a terrain made on demand makes all of it (TerrainFields' copy),
+// and s's run would then not be on demand.
+Scene rebuilt(const Scene& s, const Grid& g, const std::vector<double>& z) {
+    Scene r;
+    r.grid = g;
+    r.material = s.material;
+    r.numerics = s.numerics;
+    r.drop = s.drop;
+    r.u0 = s.u0;
+    r.h0 = s.h0;
+    r.terrain = dem_terrain(g, z, kGravity);
+    r.terrain.ensure_everywhere();
+    r.initial = State(g);
+    return r;
+}
+
+}  // namespace
+
 Scene mirrored(const Scene& s, Axis axis) {
-    Scene m = s;
     const Grid& g = s.grid;
     const auto mi = [&](int i) { return axis == Axis::x ? g.nx - 1 - i : i; };
     const auto mj = [&](int j) { return axis == Axis::y ? g.ny - 1 - j : j; };
@@ -194,8 +216,7 @@ Scene mirrored(const Scene& s, Axis axis) {
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i)
             z[static_cast<std::size_t>(mj(j)) * g.nx + mi(i)] = s.terrain.elevation(i, j);
-    m.terrain = dem_terrain(g, z, kGravity);
-    m.terrain.ensure_everywhere();
+    Scene m = rebuilt(s, g, z);
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) {
             m.initial.h(mi(i), mj(j)) = s.initial.h(i, j);
@@ -206,22 +227,21 @@ Scene mirrored(const Scene& s, Axis axis) {
 }
 
 Scene cropped(const Scene& s, const ActiveBox& box) {
-    Scene c = s;
     const Grid& g = s.grid;
-    c.grid = Grid{box.i1 - box.i0,      box.j1 - box.j0,     g.dx, g.dy,
-                  g.x0 + box.i0 * g.dx, g.y0 + box.j0 * g.dy};
-    std::vector<double> z(c.grid.cells());
-    c.initial = State(c.grid);
-    for (int j = 0; j < c.grid.ny; ++j)
-        for (int i = 0; i < c.grid.nx; ++i) {
-            z[static_cast<std::size_t>(j) * c.grid.nx + i] =
+    const Grid cut{box.i1 - box.i0,      box.j1 - box.j0,     g.dx, g.dy,
+                   g.x0 + box.i0 * g.dx, g.y0 + box.j0 * g.dy};
+    std::vector<double> z(cut.cells());
+    for (int j = 0; j < cut.ny; ++j)
+        for (int i = 0; i < cut.nx; ++i)
+            z[static_cast<std::size_t>(j) * cut.nx + i] =
                 s.terrain.elevation(i + box.i0, j + box.j0);
+    Scene c = rebuilt(s, cut, z);
+    for (int j = 0; j < cut.ny; ++j)
+        for (int i = 0; i < cut.nx; ++i) {
             c.initial.h(i, j) = s.initial.h(i + box.i0, j + box.j0);
             c.initial.hu(i, j) = s.initial.hu(i + box.i0, j + box.j0);
             c.initial.hv(i, j) = s.initial.hv(i + box.i0, j + box.j0);
         }
-    c.terrain = dem_terrain(c.grid, z, kGravity);
-    c.terrain.ensure_everywhere();
     return c;
 }
 

@@ -162,10 +162,6 @@ struct Valley {
     }
 };
 
-bool same_state(const State& a, const State& b) {
-    return same_bits(a.h, b.h) && same_bits(a.hu, b.hu) && same_bits(a.hv, b.hv);
-}
-
 TEST(TerrainOnDemand, ARunMakesOnlyTheTilesNearItsFlowAndGivesTheSameState) {
     const Valley v;
     const Grid& g = v.g;
@@ -178,7 +174,7 @@ TEST(TerrainOnDemand, ARunMakesOnlyTheTilesNearItsFlowAndGivesTheSameState) {
     const TerrainFields tiles = dem_terrain(g, z, kG);
     const RunResult a = run(g, whole, xc, yc, 400);
     const RunResult b = run(g, tiles, xc, yc, 400);
-    EXPECT_TRUE(same_state(a.state, b.state));
+    EXPECT_TRUE(same_bits(a.state, b.state));
     EXPECT_EQ(a.outflow, b.outflow);
     // The flow has reached tiles it did not need at first (else the comparison says
     // little) and left most of the grid alone.
@@ -204,7 +200,7 @@ TEST(TerrainOnDemand, RunsSharingTheTerrainOnTwoThreadsGiveTheirOwnStates) {
     }
     for (int k = 0; k < 2; ++k) {
         const RunResult alone = run(g, v.whole, x[k], y[k], 80);
-        EXPECT_TRUE(same_state(alone.state, together[k].state)) << "run " << k;
+        EXPECT_TRUE(same_bits(alone.state, together[k].state)) << "run " << k;
     }
 }
 

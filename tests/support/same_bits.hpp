@@ -5,6 +5,7 @@
 #include <span>
 
 #include "avalanche/core/field.hpp"
+#include "avalanche/core/state.hpp"
 
 namespace avalanche::test {
 
@@ -19,5 +20,10 @@ inline bool same_bits(std::span<const double> a, std::span<const double> b) {
 // The fields' stored values: a field of one row for all (Field2D::same_in_every_row)
 // differs from a full one of the same values.
 inline bool same_bits(const Field2D& a, const Field2D& b) { return same_bits(a.raw(), b.raw()); }
+
+// Two states: depth and both momenta, ghost cells included.
+inline bool same_bits(const State& a, const State& b) {
+    return same_bits(a.h, b.h) && same_bits(a.hu, b.hu) && same_bits(a.hv, b.hv);
+}
 
 }  // namespace avalanche::test
