@@ -55,15 +55,19 @@ Derivatives derivatives_at(const Grid& g, const Field2D& z, int i, int j) {
     return d;
 }
 
-// Is any second difference of z above the tolerance? Planar terrain skips the
-// centripetal term. The scan stops at the first such cell (on a real DEM, in its first
-// rows); only a plane is read to the end.
+// Whether a cell's second differences are all within the tolerance: a plane's are
+// round-off (~1e-13 z/dx^2), its curvature is taken for an exact 0.
+bool planar_at(const Derivatives& d, double tolerance) {
+    return !(std::max({std::abs(d.zxx), std::abs(d.zxy), std::abs(d.zyy)}) > tolerance);
+}
+
+// Is any cell not planar (planar_at)? Planar terrain skips the centripetal term. The
+// scan stops at the first such cell (on a real DEM, in its first rows); only a plane is
+// read to the end.
 bool has_curvature(const Grid& g, const Field2D& z, double tolerance) {
     for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) {
-            const Derivatives d = derivatives_at(g, z, i, j);
-            if (std::max({std::abs(d.zxx), std::abs(d.zxy), std::abs(d.zyy)}) > tolerance) return true;
-        }
+        for (int i = 0; i < g.nx; ++i)
+            if (!planar_at(derivatives_at(g, z, i, j), tolerance)) return true;
     return false;
 }
 
@@ -123,10 +127,16 @@ void make_dem_cells(TerrainFields& t, const Grid& grid, double gravity, const De
             const double s2 = 1.0 + dd.zx * dd.zx + dd.zy * dd.zy;
             const double s = std::sqrt(s2);
             if (t.has_curvature) {
+                // A planar cell's curvature is an exact 0, not the round-off of a
+                // plane's differences: else whether a plane's cells carry that round-off
+                // into the load would depend on a cliff anywhere else in the grid (which
+                // makes has_curvature true), and a run on a DEM would differ, to the bit,
+                // from the same run on a crop of it without the cliff.
+                const bool planar = planar_at(dd, options.curvature_tolerance);
                 const std::size_t k = static_cast<std::size_t>(j - b0) * w + (i - a0);
-                raw[0][k] = dd.zxx / s;
-                raw[1][k] = dd.zxy / s;
-                raw[2][k] = dd.zyy / s;
+                raw[0][k] = planar ? 0.0 : dd.zxx / s;
+                raw[1][k] = planar ? 0.0 : dd.zxy / s;
+                raw[2][k] = planar ? 0.0 : dd.zyy / s;
             }
             if (i < i0 || i >= i1 || j < j0 || j >= j1) continue;  // the smoothing's halo
             // ax, ay, px, py and gn are not stored: their readers compute them from sx, sy
