@@ -218,7 +218,23 @@ TEST(AdvectionStrips, RegimesAreThoseOfTheStateBeforeEachAdvection) {
 
 // The strips' buffers have the grid's row stride, and a stage writes only the columns of
 // the box (PageVector): a small flow on a wide grid makes only those pages. Written
-// whole, the 30 arrays of 24 rows of this 8004-cell stride would make 46 MB.
+// whole, the 30 arrays of 24 rows of this 8004-cell stride would make 46 MB; the four
+// velocity bounds alone, 6 MB. The three steps make 8.4 MB (WAF) and 6.7 MB (Godunov) in
+// a release build: the bound is 12 MB, which the four bounds written whole exceed. Under
+// AddressSanitizer the process makes more, 12.0-13.2 MB and 7.7 MB on the Zen 5 VM of
+// 2026-12-07, where the sanitizer step's 12 MB failed once at 13.2 MB: there it is 18 MB,
+// still far below the buffers written whole.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr long long kStripBuffersGrowth = 18ll << 20;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr long long kStripBuffersGrowth = 18ll << 20;
+#else
+constexpr long long kStripBuffersGrowth = 12ll << 20;
+#endif
+#else
+constexpr long long kStripBuffersGrowth = 12ll << 20;
+#endif
 TEST(AdvectionStrips, ASmallFlowOnAWideGridMakesOnlyItsColumnsOfTheBuffers) {
     if (test::resident_bytes() < 0) GTEST_SKIP() << "no /proc/self/statm";
     const analytic::ScopedThreads scoped(1);
@@ -236,7 +252,8 @@ TEST(AdvectionStrips, ASmallFlowOnAWideGridMakesOnlyItsColumnsOfTheBuffers) {
         const long long before = test::resident_bytes();
         for (int step = 0; step < 3; ++step) stepper.step(s, 0.5 * stepper.stable_dt(s));
         const long long grown = test::resident_bytes() - before;
-        EXPECT_LT(grown, 12ll << 20) << "the strips' buffers were written beyond the box's columns";
+        EXPECT_LT(grown, kStripBuffersGrowth)
+            << "the strips' buffers were written beyond the box's columns";
         EXPECT_LT(stepper.active_box().i1 - stepper.active_box().i0, 100);
     }
 }
