@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "avalanche/core/field_storage.hpp"
 #include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/face_flux_rows.hpp"
 #include "avalanche/numerics/update_rows.hpp"
@@ -33,13 +34,15 @@ using avalanche::bench::min_of;
 namespace {
 
 constexpr int kRow = 512;  // cells per row: 9 arrays of 4 KB fit the 48 KB L1 data cache
-constexpr int kPad = 4;    // columns beyond each end: the face stencils reach two cells
+// Columns beyond each end: the face stencils reach two cells; eight, so that column 0
+// starts a cache line, as in the grid's fields and the strips' buffers (Field2D::column0).
+constexpr int kPad = 8;
 constexpr int kStride = kRow + 2 * kPad;
 
 // Three rows (below, this, above) of one per-cell quantity; at(0) addresses column 0
 // of the middle row, as the kernels expect.
 struct Rows {
-    std::vector<double> v = std::vector<double>(3 * kStride);
+    PageVector<double> v = PageVector<double>(3 * kStride);  // page-aligned
     double* at(int row) { return v.data() + (row + 1) * kStride + kPad; }
     double* mid() { return at(0); }
 };

@@ -174,12 +174,13 @@ void Simulation::drain_sinks() {
 
 void Simulation::resume(const LoopState& loop, const std::vector<double>& h, const std::vector<double>& hu,
                         const std::vector<double>& hv, const CheckpointData& observers) {
-    const std::size_t n = state_.h.raw().size();
+    // The checkpoint's arrays hold the cells without the rows' padding (Field2D::packed).
+    const std::size_t n = state_.h.packed_size();
     if (h.size() != n || hu.size() != n || hv.size() != n)
         throw InputError("checkpoint", "the state arrays do not fit the grid of the run");
-    state_.h.raw().assign(h.begin(), h.end());
-    state_.hu.raw().assign(hu.begin(), hu.end());
-    state_.hv.raw().assign(hv.begin(), hv.end());
+    state_.h.set_packed(h);
+    state_.hu.set_packed(hu);
+    state_.hv.set_packed(hv);
     // The box is recomputed from the state: the steps that follow find the same wet
     // cells from it as from the box the saving run carried (both hold every wet cell),
     // so dt and every update are unchanged (tests/cli/test_checkpoint_resume.cpp).
@@ -193,7 +194,9 @@ void Simulation::resume(const LoopState& loop, const std::vector<double>& h, con
             throw InputError("checkpoint", "dataset " + std::string(kRegimeDataset) +
                                                " holds " + std::to_string(r) +
                                                ", expected regime flags 0 to 3");
-    stepper_.set_regime(CellVector<RegimeFlags>(regime.begin(), regime.end()));
+    CellVector<RegimeFlags> regime_cells(state_.h.raw().size(), kRegimeAtStart);
+    state_.h.unpack(regime.data(), regime_cells.data());
+    stepper_.set_regime(std::move(regime_cells));
     if (numerics_.rest_faces) {
         const std::vector<std::int64_t>& held =
             observers.integer(kHeldDataset, static_cast<long long>(n));
@@ -202,7 +205,11 @@ void Simulation::resume(const LoopState& loop, const std::vector<double>& h, con
                 throw InputError("checkpoint", "dataset " + std::string(kHeldDataset) + " holds " +
                                                    std::to_string(f) + ", expected 0 or 1");
         // Before the first step the first advection makes its flags from the state.
-        if (loop.steps > 0) stepper_.set_held_at_rest(CellVector<HeldFlag>(held.begin(), held.end()));
+        if (loop.steps > 0) {
+            CellVector<HeldFlag> held_cells(state_.h.raw().size(), 0);
+            state_.h.unpack(held.data(), held_cells.data());
+            stepper_.set_held_at_rest(std::move(held_cells));
+        }
     }
     for (auto* o : observers_) o->restore(observers);
     loop_ = loop;
@@ -278,18 +285,18 @@ RunStatistics Simulation::run() {
         const CellVector<RegimeFlags> regime = stepper_.regime();
         std::vector<std::int64_t>& saved = c.observers.integers[kRegimeDataset];
         if (regime.empty())  // no advection yet: every cell starts active
-            saved.assign(state_.h.raw().size(), kRegimeAtStart);
+            saved.assign(state_.h.packed_size(), kRegimeAtStart);
         else
-            saved.assign(regime.begin(), regime.end());
+            saved = state_.h.packed<std::int64_t>(regime.data());
         if (numerics_.rest_faces) {
             // Empty before the first advection, and with S L S (which reads only the
             // friction stage's flags): saved as zeros, which the next step never reads.
             const CellVector<HeldFlag> held = stepper_.held_at_rest();
             std::vector<std::int64_t>& saved_held = c.observers.integers[kHeldDataset];
             if (held.empty())
-                saved_held.assign(state_.h.raw().size(), 0);
+                saved_held.assign(state_.h.packed_size(), 0);
             else
-                saved_held.assign(held.begin(), held.end());
+                saved_held = state_.h.packed<std::int64_t>(held.data());
         }
         write_checkpoint_(c);
     };

@@ -48,10 +48,11 @@ void write_reals(hid_t file, const std::string& name, const std::vector<double>&
 }
 
 void write_field(hid_t file, const std::string& name, const Field2D& f, const std::string& path) {
+    // Ghosts included, without the rows' padding (Field2D::packed).
     const auto rows = static_cast<hsize_t>(f.ny() + 2 * f.ghosts());
-    const auto cols = static_cast<hsize_t>(f.stride());
-    write_dataset(file, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {rows, cols}, f.raw().data(),
-                  path);
+    const auto cols = static_cast<hsize_t>(f.nx() + 2 * f.ghosts());
+    const std::vector<double> cells = f.packed();
+    write_dataset(file, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {rows, cols}, cells.data(), path);
 }
 
 void write_info(hid_t root, const CheckpointInfo& info, const Grid& grid, const std::string& kind,

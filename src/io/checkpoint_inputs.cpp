@@ -36,7 +36,8 @@ class Fnv1a {
         value(f.ghosts());
         if (f.empty()) return;
         const int ng = f.ghosts();
-        for (int j = -ng; j < f.ny() + ng; ++j) words(f.row(j) - ng, static_cast<std::size_t>(f.stride()));
+        const auto width = static_cast<std::size_t>(f.nx() + 2 * ng);  // not the rows' padding
+        for (int j = -ng; j < f.ny() + ng; ++j) words(f.row(j) - ng, width);
     }
     // The values of a grid-sized array, a 64-bit word at a time in four interleaved
     // lanes (word k into lane k % 4), each an FNV-1a step on the whole word followed by

@@ -42,6 +42,20 @@ namespace {
 // three beyond a strip's own, they make the five state rows beyond its own that a
 // strip reads (Stepper::kStateRowsReadBeyond; the velocity quotients reach four).
 constexpr int kRegimeTermsReach = 2;
+
+// Runs run(a, b) over the columns [ia, ib) in two parts, cut at the first column of a
+// cache line (column 0 starts one: Field2D::column0, StripBuffers::k), for the row
+// kernels whose result for a column does not depend on where their loop starts: the
+// per-cell stage and the y-faces start two ghost columns before column 0, and their
+// vector loads then straddled two lines each (case (a): WAF 6 % faster for column 0
+// on a line, docs/performance.md).
+template <class Run>
+void from_line_start(int ia, int ib, Run&& run) {
+    constexpr int line = Field2D::kRowAlignment;
+    const int a = std::min(ia + ((-ia) % line + line) % line, ib);
+    if (ia < a) run(ia, a);
+    if (a < ib) run(a, ib);
+}
 }  // namespace
 
 void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int strip_rows, bool predictors) {
@@ -121,7 +135,7 @@ void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
     const Carried predictors[] = {{&yfo_h, 1, 1},  {&yfo_qn, 1, 1},  {&yfo_qt, 1, 1},
                                   {&pred_h, 0, 3}, {&pred_hu, 0, 3}, {&pred_hv, 0, 3},
                                   {&pred_u, 0, 3}, {&pred_v, 0, 3}, {&pred_a, 0, 3}};
-    const std::ptrdiff_t first = i0 + ng, width = i1 - i0;
+    const std::ptrdiff_t first = column0 + i0, width = i1 - i0;
     const auto move = [&](const Carried& c) {
         for (int q = 4 + c.first; q < 4 + c.first + c.count; ++q) {  // row J + d at position 4 + d
             const std::ptrdiff_t to = static_cast<std::ptrdiff_t>(q) * stride + first;
@@ -152,7 +166,7 @@ void Stepper::pressure_row(const State& s, int r, int ia, int ib, StripBuffers& 
                               metric ? nullptr : terrain_.normal_thickness.row(r),
                               metric ? terrain_.sx.row(r) : nullptr,
                               metric ? terrain_.sy.row(r) : nullptr,
-                              isotropic ? nullptr : w.regime_row.data() + kGhostLayers,
+                              isotropic ? nullptr : w.regime_row.data() + w.column0,
                               terrain_.slope_gravity};
     const PressureRowOutput out{w.cx.at(o),   w.cy.at(o),   w.u_lo.at(o),
                                 w.u_hi.at(o), w.v_lo.at(o), w.v_hi.at(o),
@@ -171,7 +185,7 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
                               StripBuffers& w) const {
     const int ng = kGhostLayers, lo = -ng, hi = grid_.nx + ng - 1, top = grid_.ny + ng - 1;
     const auto clamped = [&](int j) { return std::clamp(j, -ng, top); };  // rows, at the padding
-    RegimeFlags* row = w.regime_row.data() + ng;  // column 0
+    RegimeFlags* row = w.regime_row.data() + w.column0;
     // The row's previous regime, which regime_row replaces cell by cell (regime_ keeps it
     // in another form: stepper.hpp).
     const RegimeFlags* kept = regime_.data() + s.h.index(ia, r);
@@ -185,11 +199,14 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
     const bool metric = terrain_.has_metric;
     w.terms_end = std::max(w.terms_end, clamped(r - kRegimeTermsReach));
     for (int j = w.terms_end; j <= clamped(r + kRegimeTermsReach); ++j)
-        regime_terms_row(s.h.row(j), s.hu.row(j), s.hv.row(j), metric ? terrain_.sx.row(j) : nullptr,
-                         metric ? terrain_.sy.row(j) : nullptr, h_min_, rest_speed,
-                         {w.ring_row(w.term_wet, j), w.ring_row(w.term_still_x, j),
-                          w.ring_row(w.term_still_y, j)},
-                         c0, c1);
+        from_line_start(c0, c1, [&](int a, int e) {
+            regime_terms_row(s.h.row(j), s.hu.row(j), s.hv.row(j),
+                             metric ? terrain_.sx.row(j) : nullptr,
+                             metric ? terrain_.sy.row(j) : nullptr, h_min_, rest_speed,
+                             {w.ring_row(w.term_wet, j), w.ring_row(w.term_still_x, j),
+                              w.ring_row(w.term_still_y, j)},
+                             a, e);
+        });
     w.terms_end = std::max(w.terms_end, clamped(r + kRegimeTermsReach) + 1);
 
     const int jm = clamped(r - 1), jp = clamped(r + 1), jmm = clamped(r - 2), jpp = clamped(r + 2);
@@ -211,7 +228,7 @@ void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffer
     // those of the block at that end. Rows of the other blocks it computed are theirs.
     const bool first_block = w.block_j0 == box_.j0, last_block = w.block_j1 == box_.j1;
     if ((!first_block && r < w.block_j0) || (!last_block && r >= w.block_j1)) return;
-    const RegimeFlags* row = w.regime_row.data() + kGhostLayers;
+    const RegimeFlags* row = w.regime_row.data() + w.column0;
     const bool held = (!first_block && r < w.block_j0 + kRegimeHeldRows) ||
                       (!last_block && r >= w.block_j1 - kRegimeHeldRows);
     if (!held) {
@@ -227,7 +244,7 @@ void Stepper::keep_regime_row(const State& s, int r, int ia, int ib, StripBuffer
     w.held_rows.push_back(r);
     w.held_cols.emplace_back(ia, ib);
     std::copy_n(row + ia, ib - ia,
-                w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + kGhostLayers + ia);
+                w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + w.column0 + ia);
 }
 
 // ---------------------------------------------------------------- faces held at rest
@@ -273,7 +290,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     // Columns of the per-cell stage and the y-predictor: every column a stage uses.
     const ActiveBox per_cell = per_cell_box(b);
     const int pc0 = per_cell.i0, pc1 = per_cell.i1;
-    w.ng = ng;
+    w.column0 = s.h.column0();
     // The thread's previous strip ended at J: the stage rows this strip reads and that
     // one computed are moved to their places in the buffers (carry_rows), and only the
     // rest is computed below. Otherwise every stage starts empty.
@@ -316,8 +333,10 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     // one row at a segment's start). Then the pressure coefficients and invariant bounds.
     for (int r = std::max(v0, w.vel_end); r < v1; ++r) {
         const std::ptrdiff_t k = w.k(0, r);
-        state_velocity_row(s.h.row(r), s.hu.row(r), s.hv.row(r), w.su.at(k), w.sv.at(k),
-                           pc0, pc1);
+        from_line_start(pc0, pc1, [&](int ia, int ib) {
+            state_velocity_row(s.h.row(r), s.hu.row(r), s.hv.row(r), w.su.at(k), w.sv.at(k), ia,
+                               ib);
+        });
     }
     w.vel_end = std::max(w.vel_end, v1);
 
@@ -329,7 +348,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
             regime_row_into(s, rest_speed, r, pc0, pc1, w);
             keep_regime_row(s, r, pc0, pc1, w);
         }
-        pressure_row(s, r, pc0, pc1, w);
+        from_line_start(pc0, pc1, [&](int ia, int ib) { pressure_row(s, r, ia, ib, w); });
     }
     w.p_end = std::max(w.p_end, q1);
 
@@ -412,28 +431,34 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     // first-order HLLC on the state.
     if (waf) {
         const double ratio = 0.5 * tau / grid_.dy;
-        const int n = pc1 - pc0;
+        // The state's y-faces and the y-predictor over the columns [ia, ib).
+        const auto y_state = [&](int ia, int r) {
+            return with_velocities(face_in(sh, shv, shu, full(ia, r), w.cy, w.ay, w.k(ia, r), st),
+                                   w.sv, w.su, w.k(ia, r));
+        };
         for (int r = std::max(x0, w.yfo_end); r <= x1;
              ++r)  // first-order y-faces r (rows r - 1 | r)
-            hllc_face_row(
-                with_velocities(face_in(sh, shv, shu, full(pc0, r), w.cy, w.ay, w.k(pc0, r), st),
-                                w.sv, w.su, w.k(pc0, r)),
-                face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), n, hd);
+            from_line_start(pc0, pc1, [&](int ia, int ib) {
+                hllc_face_row(y_state(ia, r), face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(ia, r)),
+                              ib - ia, hd);
+            });
         w.yfo_end = std::max(w.yfo_end, x1 + 1);
         for (int r = std::max(x0, w.xf_end); r < x1; ++r) {
             // The y-predictor of row r, used at once by the x-faces of row r.
             // Its velocity quotients (normal hv / h, tangential hu / h) are kept for the
             // x-faces, which read every cell twice.
-            const std::ptrdiff_t c = pc0 + ng;
-            FaceRowOutput predicted{w.row_h.data() + c, w.row_hv.data() + c, w.row_hu.data() + c};
-            predicted.un = w.row_v.data() + c;
-            predicted.ut = w.row_u.data() + c;
-            predictor_row(
-                with_velocities(face_in(sh, shv, shu, full(pc0, r), w.cy, w.ay, w.k(pc0, r), st),
-                                w.sv, w.su, w.k(pc0, r)),
-                face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(pc0, r)), ratio, hd, predicted, n);
-            celerity_row(w.row_h.data() + c, w.cx.at(w.k(pc0, r)), hd, w.row_a.data() + c, n);
-            const std::ptrdiff_t k = w.k(b.i0, r), c0 = b.i0 + ng;
+            from_line_start(pc0, pc1, [&](int ia, int ib) {
+                const std::ptrdiff_t c = w.column0 + ia;
+                FaceRowOutput predicted{w.row_h.data() + c, w.row_hv.data() + c,
+                                        w.row_hu.data() + c};
+                predicted.un = w.row_v.data() + c;
+                predicted.ut = w.row_u.data() + c;
+                predictor_row(y_state(ia, r), face_out(w.yfo_h, w.yfo_qn, w.yfo_qt, w.k(ia, r)),
+                              ratio, hd, predicted, ib - ia);
+                celerity_row(w.row_h.data() + c, w.cx.at(w.k(ia, r)), hd, w.row_a.data() + c,
+                             ib - ia);
+            });
+            const std::ptrdiff_t k = w.k(b.i0, r), c0 = w.column0 + b.i0;
             FaceRowInput in{w.row_h.data() + c0, w.row_hu.data() + c0, w.row_hv.data() + c0,
                             w.cx.at(k), 1};
             in.un = w.row_u.data() + c0;
@@ -461,8 +486,9 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
         const double ratio = 0.5 * tau / grid_.dx;
         const int n = b.i1 - b.i0;
         for (int r = std::max(xp0, w.xp_end); r < xp1; ++r) {
-            const FaceRowOutput first_order{w.row_h.data() + b.i0 + ng, w.row_hu.data() + b.i0 + ng,
-                                            w.row_hv.data() + b.i0 + ng};
+            const std::ptrdiff_t c0 = w.column0 + b.i0;
+            const FaceRowOutput first_order{w.row_h.data() + c0, w.row_hu.data() + c0,
+                                            w.row_hv.data() + c0};
             hllc_face_row(
                 with_velocities(face_in(sh, shu, shv, full(b.i0, r), w.cx, w.ax, w.k(b.i0, r), 1),
                                 w.su, w.sv, w.k(b.i0, r)),
@@ -717,7 +743,7 @@ void Stepper::advect(State& s, double tau) {
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
         // The columns the stages read of the bounds: the per-cell stage's, with a
         // margin (buffer positions: column -ng at 0).
-        w.cover_columns(per_cell.i0 - 2 + kGhostLayers, per_cell.i1 + 2 + kGhostLayers);
+        w.cover_columns(w.column0 + per_cell.i0 - 2, w.column0 + per_cell.i1 + 2);
         w.waiting_used = 0;
         w.held_rows.clear();
         w.held_cols.clear();
@@ -751,7 +777,7 @@ void Stepper::advect(State& s, double tau) {
         for (std::size_t q = 0; q < w.held_rows.size(); ++q) {
             const auto [c0, c1] = w.held_cols[q];
             const RegimeFlags* held =
-                w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + kGhostLayers + c0;
+                w.held_regime.data() + static_cast<std::ptrdiff_t>(q) * w.stride + w.column0 + c0;
             std::transform(held, held + (c1 - c0), regime_.data() + s.h.index(c0, w.held_rows[q]),
                            stored_regime);
         }

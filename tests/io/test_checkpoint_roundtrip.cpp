@@ -193,9 +193,9 @@ TEST(CheckpointRoundTrip, EveryValueReadsBackBitForBit) {
     EXPECT_EQ(r.loop.cell_updates, loop.cell_updates);
     EXPECT_EQ(r.loop.next_checkpoint, loop.next_checkpoint);
     EXPECT_EQ(r.loop.energy_budget, loop.energy_budget);
-    EXPECT_TRUE(same_bits(r.h, state.h.raw()));
-    EXPECT_TRUE(same_bits(r.hu, state.hu.raw()));
-    EXPECT_TRUE(same_bits(r.hv, state.hv.raw()));
+    EXPECT_TRUE(same_bits(r.h, state.h.packed()));
+    EXPECT_TRUE(same_bits(r.hu, state.hu.packed()));
+    EXPECT_TRUE(same_bits(r.hv, state.hv.packed()));
     EXPECT_TRUE(same_bits(r.observers.reals.at("a/b"), c.observers.reals.at("a/b")));
     EXPECT_TRUE(r.observers.reals.at("empty").empty());
     EXPECT_EQ(r.observers.integers.at("a/counts"), c.observers.integers.at("a/counts"));
@@ -266,7 +266,7 @@ TEST(CheckpointRoundTrip, ResumeRefusesARegimeThatIsNotFlags) {
     }
     ASSERT_TRUE(taken);
     const auto& regime = saved.integers.at("solver/regime");
-    ASSERT_EQ(regime.size(), state.h.raw().size());
+    ASSERT_EQ(regime.size(), state.h.packed_size());
     long passive = 0;
     for (const std::int64_t r : regime) passive += r != 3;
     EXPECT_GT(passive, 0) << "the checkpoint should hold some passive cells";
@@ -274,12 +274,9 @@ TEST(CheckpointRoundTrip, ResumeRefusesARegimeThatIsNotFlags) {
     const auto resume_with = [&](const CheckpointData& observers) {
         Simulation sim(s.grid, s.terrain, s.scenario.material, s.scenario.numerics, s.initial,
                        s.h_min);
-        const auto plain = [](const Field2D& f) {
-            return std::vector<double>(f.raw().begin(), f.raw().end());
-        };
-        sim.resume(loop, plain(state.h), plain(state.hu), plain(state.hv), observers);
+        sim.resume(loop, state.h.packed(), state.hu.packed(), state.hv.packed(), observers);
         const CellVector<RegimeFlags> restored = sim.stepper().regime();
-        return std::vector<std::int64_t>(restored.begin(), restored.end());
+        return state.h.packed<std::int64_t>(restored.data());
     };
     EXPECT_EQ(resume_with(saved), regime);
     CheckpointData bad = saved;

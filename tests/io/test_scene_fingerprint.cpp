@@ -63,16 +63,18 @@ TEST(SceneFingerprint, EveryBitOfEveryCellOfAFieldCounts) {
     const Scene reference;
     const std::string base = reference.fingerprint();
     Scene s;
-    const int stride = s.terrain.elevation.stride();
-    // Every cell of the padded elevation (each lane position, ghosts included), the
-    // lowest mantissa bit, a middle one and the sign.
-    for (std::size_t k = 0; k < s.terrain.elevation.raw().size(); ++k) {
-        for (const int bit : {0, 31, 63}) {
-            double& v = s.terrain.elevation.raw()[k];
-            const double kept = v;
-            v = with_bit_flipped(kept, bit);
-            EXPECT_NE(s.fingerprint(), base) << "cell " << k % stride << ", " << k / stride << " bit " << bit;
-            v = kept;
+    // Every cell of the elevation (each lane position, ghosts included; not the rows'
+    // padding, which holds no cell), the lowest mantissa bit, a middle one and the sign.
+    Field2D& z = s.terrain.elevation;
+    for (int j = -z.ghosts(); j < z.ny() + z.ghosts(); ++j) {
+        for (int i = -z.ghosts(); i < z.nx() + z.ghosts(); ++i) {
+            for (const int bit : {0, 31, 63}) {
+                double& v = z(i, j);
+                const double kept = v;
+                v = with_bit_flipped(kept, bit);
+                EXPECT_NE(s.fingerprint(), base) << "cell " << i << ", " << j << " bit " << bit;
+                v = kept;
+            }
         }
     }
     EXPECT_EQ(s.fingerprint(), base);

@@ -227,9 +227,7 @@ TEST_P(RandomSweep, ResumedFromACheckpointGivesTheSameRun) {
         CheckpointData solver;
     };
     std::optional<Saved> saved;
-    const auto values = [](const Field2D& f) {
-        return std::vector<double>(f.raw().begin(), f.raw().end());
-    };
+    const auto values = [](const Field2D& f) { return f.packed(); };
     Simulation whole(scene.grid, scene.terrain, scene.material, scene.numerics, scene.initial,
                      h_min);
     whole.set_checkpointing(scene.numerics.t_end / 3.0, [&](const SimulationCheckpoint& c) {

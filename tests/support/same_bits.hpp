@@ -19,7 +19,10 @@ inline bool same_bits(std::span<const double> a, std::span<const double> b) {
 
 // The fields' stored values: a field of one row for all (Field2D::same_in_every_row)
 // differs from a full one of the same values.
-inline bool same_bits(const Field2D& a, const Field2D& b) { return same_bits(a.raw(), b.raw()); }
+// Every cell, ghosts included (not the rows' padding, which no cell is).
+inline bool same_bits(const Field2D& a, const Field2D& b) {
+    return same_bits(a.packed(), b.packed());
+}
 
 // Two states: depth and both momenta, ghost cells included.
 inline bool same_bits(const State& a, const State& b) {

@@ -173,9 +173,9 @@ TEST(RestFaces, ResumedFromACheckpointEndsAsTheUninterruptedRun) {
         ref.set_checkpointing(1.7, [&](const SimulationCheckpoint& c) {
             if (loop) return;
             loop = c.loop;
-            h.assign(c.state.h.raw().begin(), c.state.h.raw().end());
-            hu.assign(c.state.hu.raw().begin(), c.state.hu.raw().end());
-            hv.assign(c.state.hv.raw().begin(), c.state.hv.raw().end());
+            h = c.state.h.packed();
+            hu = c.state.hu.packed();
+            hv = c.state.hv.packed();
             saved = c.observers;
         });
         const RunStatistics ref_stats = ref.run();

@@ -2,7 +2,12 @@
 // A scalar cell field on a Grid, padded with ghost layers on every side so that
 // stencils near the edges need no branches. Storage is one contiguous
 // vector, row-major (x fastest), so row sweeps vectorise; a field written whole sits on
-// huge pages (field_storage.hpp).
+// huge pages (field_storage.hpp). Each row starts and its column 0 sits on a 64-byte
+// cache line (column0(), stride(): the ghost columns just before it, the row padded to
+// whole lines), so that a row kernel's vector loads from column 0 on do not straddle
+// two lines (docs/performance.md, "Rows on cache lines"). The padding holds no cell:
+// fill() and copies write it, nothing reads it. packed() gives the cells without it,
+// the layout of checkpoint files.
 //
 // A field the same in every row, ghost rows included (same_in_every_row: the chute's
 // terrain, which varies only down the slope), stores that one row: every row reads it,
@@ -28,7 +33,12 @@ public:
     // the memory of cells nobody writes is never touched. Any other value is written
     // everywhere, on huge pages.
     Field2D(int nx, int ny, int ghosts, double value = 0.0)
-        : nx_(nx), ny_(ny), ng_(ghosts), stride_(nx + 2 * ghosts), row_step_(stride_),
+        : nx_(nx),
+          ny_(ny),
+          ng_(ghosts),
+          column0_(column0_of(ghosts)),
+          stride_(stride_of(nx, ghosts)),
+          row_step_(stride_),
           data_(cells_with_ghosts(nx, ny, ghosts)) {
         if (!is_positive_zero(value)) fill(value);
     }
@@ -39,7 +49,8 @@ public:
         f.nx_ = nx;
         f.ny_ = ny;
         f.ng_ = ghosts;
-        f.stride_ = nx + 2 * ghosts;
+        f.column0_ = column0_of(ghosts);
+        f.stride_ = stride_of(nx, ghosts);
         f.row_step_ = 0;
         f.data_ = FieldStorage(static_cast<std::size_t>(f.stride_));
         if (!is_positive_zero(value)) std::fill(f.data_.begin(), f.data_.end(), value);
@@ -50,8 +61,13 @@ public:
     // would leave it in small ones. Assignment to a field of the same size reuses its
     // memory; to one of another size it is a copy, moved in.
     Field2D(const Field2D& other)
-        : nx_(other.nx_), ny_(other.ny_), ng_(other.ng_), stride_(other.stride_),
-          row_step_(other.row_step_), data_(other.data_.size()) {
+        : nx_(other.nx_),
+          ny_(other.ny_),
+          ng_(other.ng_),
+          column0_(other.column0_),
+          stride_(other.stride_),
+          row_step_(other.row_step_),
+          data_(other.data_.size()) {
         advise_written_whole();
         std::copy(other.data_.begin(), other.data_.end(), data_.begin());
     }
@@ -62,6 +78,7 @@ public:
         nx_ = other.nx_;
         ny_ = other.ny_;
         ng_ = other.ng_;
+        column0_ = other.column0_;
         stride_ = other.stride_;
         row_step_ = other.row_step_;
         return *this;
@@ -74,6 +91,18 @@ public:
     [[nodiscard]] int ny() const { return ny_; }
     [[nodiscard]] int ghosts() const { return ng_; }
     [[nodiscard]] int stride() const { return stride_; }
+    // Position of column 0 in a row of the storage (the ghost columns before it).
+    [[nodiscard]] int column0() const { return column0_; }
+    // Rows start on a cache line (kRowAlignment values) and column 0 does too, so that
+    // the row kernels' vector loads of a row do not straddle two lines.
+    static constexpr int kRowAlignment = 8;
+    static constexpr int column0_of(int ghosts) { return round_up(ghosts); }
+    static constexpr int stride_of(int nx, int ghosts) {
+        return round_up(column0_of(ghosts) + nx + ghosts);
+    }
+    static constexpr int round_up(int n) {
+        return (n + kRowAlignment - 1) / kRowAlignment * kRowAlignment;
+    }
     [[nodiscard]] bool empty() const { return data_.empty(); }
     // True while the field stores one row that every row reads (same_in_every_row).
     [[nodiscard]] bool same_in_every_row() const { return row_step_ != stride_; }
@@ -81,7 +110,7 @@ public:
     // Linear index of cell (i, j) in raw(); i in [-ng, nx+ng), j in [-ng, ny+ng).
     [[nodiscard]] std::ptrdiff_t index(int i, int j) const {
         assert(i >= -ng_ && i < nx_ + ng_ && j >= -ng_ && j < ny_ + ng_);
-        return static_cast<std::ptrdiff_t>(j + ng_) * row_step_ + (i + ng_);
+        return static_cast<std::ptrdiff_t>(j + ng_) * row_step_ + (column0_ + i);
     }
     double& operator()(int i, int j) {
         store_every_row();
@@ -96,7 +125,7 @@ public:
     // Column 0 of the one row a field same_in_every_row stores, to write it.
     double* every_row() {
         assert(same_in_every_row());
-        return data_.data() + ng_;
+        return data_.data() + column0_;
     }
 
     // Fills every cell; a field same_in_every_row stays one row.
@@ -126,6 +155,33 @@ public:
             std::copy(values.begin() + static_cast<std::ptrdiff_t>(j) * nx_,
                       values.begin() + static_cast<std::ptrdiff_t>(j + 1) * nx_, row(j));
     }
+    // The cells of an array in this field's layout (its raw() or a CellVector of as many
+    // values), ghosts included, row by row without the rows' padding: (nx + 2 ng) x
+    // (ny + 2 ng) values, the layout of checkpoint files, whatever the padding.
+    [[nodiscard]] std::size_t packed_size() const {
+        return static_cast<std::size_t>(nx_ + 2 * ng_) * static_cast<std::size_t>(ny_ + 2 * ng_);
+    }
+    template <class Out, class In>
+    [[nodiscard]] std::vector<Out> packed(const In* values) const {
+        std::vector<Out> out;
+        out.reserve(packed_size());
+        for (int j = -ng_; j < ny_ + ng_; ++j)
+            for (int i = -ng_; i < nx_ + ng_; ++i)
+                out.push_back(static_cast<Out>(values[index(i, j)]));
+        return out;
+    }
+    [[nodiscard]] std::vector<double> packed() const { return packed<double>(data_.data()); }
+    // The inverse: packed values (packed_size() of them) into an array in this layout.
+    template <class Out, class In>
+    void unpack(const In* values, Out* out) const {
+        for (int j = -ng_; j < ny_ + ng_; ++j)
+            for (int i = -ng_; i < nx_ + ng_; ++i) out[index(i, j)] = static_cast<Out>(*values++);
+    }
+    void set_packed(const std::vector<double>& values) {
+        assert(values.size() == packed_size());
+        unpack(values.data(), raw().data());
+    }
+
     // Copies the nearest interior value into every ghost cell (zero gradient). A field
     // same_in_every_row has its ghost rows already: only its row's ends are written.
     void extend_to_ghosts() {
@@ -160,11 +216,12 @@ private:
     }
 
     static std::size_t cells_with_ghosts(int nx, int ny, int ghosts) {
-        return static_cast<std::size_t>(nx + 2 * ghosts) * static_cast<std::size_t>(ny + 2 * ghosts);
+        return static_cast<std::size_t>(stride_of(nx, ghosts)) *
+               static_cast<std::size_t>(ny + 2 * ghosts);
     }
     static bool is_positive_zero(double v) { return v == 0.0 && !std::signbit(v); }
 
-    int nx_ = 0, ny_ = 0, ng_ = 0, stride_ = 0;
+    int nx_ = 0, ny_ = 0, ng_ = 0, column0_ = 0, stride_ = 0;
     int row_step_ = 0;  // stride_, or 0 where every row reads one (same_in_every_row)
     FieldStorage data_;
 };

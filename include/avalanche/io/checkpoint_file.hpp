@@ -39,7 +39,7 @@ struct CheckpointContents {
     CheckpointInfo info;
     LoopState loop;
     int nx = 0, ny = 0, ghosts = 0;
-    std::vector<double> h, hu, hv;  // with ghost cells, as Field2D::raw()
+    std::vector<double> h, hu, hv;  // with ghost cells, as Field2D::packed()
     CheckpointData observers;
     std::string path;
 };

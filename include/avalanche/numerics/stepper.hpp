@@ -152,7 +152,7 @@ class Stepper {
             double operator[](std::ptrdiff_t k) const { return *at(k); }
         };
         std::ptrdiff_t stride = 0;
-        int ng = 0, base = 0, rows = 0;
+        int column0 = 0, base = 0, rows = 0;  // column0: column 0's position in a row
         StripRows su, sv;  // the state's velocity quotients hu / h, hv / h
         StripRows cx, cy;  // k_x p_x and k_y p_y per cell
         StripRows ax, ay;  // celerities sqrt(cx h), sqrt(cy h) (0 on thin cells)
@@ -187,13 +187,13 @@ class Stepper {
         // indexed by grid row (ring_row), so that each row's are computed once per block
         // of strips, not once for each of the five regime rows that read them. Rows
         // [.., terms_end) are computed (regime_row_into).
-        std::vector<double> term_wet, term_still_x, term_still_y;
+        PageVector<double> term_wet, term_still_x, term_still_y;  // (PageVector: rows aligned)
         int terms_end = 0;
         static constexpr int kRegimeRingRows = 8;
         // Column 0 of grid row r of a ring.
-        [[nodiscard]] double* ring_row(std::vector<double>& a, int r) const {
+        [[nodiscard]] double* ring_row(PageVector<double>& a, int r) const {
             const int slot = ((r % kRegimeRingRows) + kRegimeRingRows) % kRegimeRingRows;
-            return a.data() + static_cast<std::ptrdiff_t>(slot) * stride + ng;
+            return a.data() + static_cast<std::ptrdiff_t>(slot) * stride + column0;
         }
         // The update rows [block_j0, block_j1) of the segment the thread works on (its
         // strips of one band, advect()): which new regime rows are the segment's to
@@ -205,7 +205,7 @@ class Stepper {
         std::vector<RegimeFlags> held_regime;
         std::vector<int> held_rows;
         std::vector<std::pair<int, int>> held_cols;
-        std::vector<double> row_h, row_hu, row_hv, row_u, row_v,
+        PageVector<double> row_h, row_hu, row_hv, row_u, row_v,
             row_a;  // one row: the y-predictor's scratch (row_a: celerity in x)
         // Rows computed so far of each stage (end, exclusive), valid while the next
         // strip starts at carried_for.
@@ -226,7 +226,7 @@ class Stepper {
         // columns [i0, i1); the predictors' rows only for the WAF scheme.
         void carry_rows(int by, bool waf, int i0, int i1);
         [[nodiscard]] std::ptrdiff_t k(int i, int r) const {
-            return static_cast<std::ptrdiff_t>(r - base) * stride + (i + ng);
+            return static_cast<std::ptrdiff_t>(r - base) * stride + (column0 + i);
         }
     };
 
