@@ -58,8 +58,10 @@ void from_line_start(int ia, int ib, Run&& run) {
 }
 }  // namespace
 
-void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int strip_rows, bool predictors) {
+void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int column_zero, int strip_rows,
+                                     bool predictors) {
     stride = row_stride;
+    column0 = column_zero;
     rows = strip_rows + 8;
     // Each array's positions, from the row ranges of advect_strip for a strip [J, J + S)
     // at position 4 (base J - 4), with what its readers reach beyond them:
@@ -290,7 +292,6 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     // Columns of the per-cell stage and the y-predictor: every column a stage uses.
     const ActiveBox per_cell = per_cell_box(b);
     const int pc0 = per_cell.i0, pc1 = per_cell.i1;
-    w.column0 = s.h.column0();
     // The thread's previous strip ended at J: the stage rows this strip reads and that
     // one computed are moved to their places in the buffers (carry_rows), and only the
     // rest is computed below. Otherwise every stage starts empty.
@@ -647,7 +648,8 @@ void Stepper::advect(State& s, double tau) {
         strips_.resize(static_cast<std::size_t>(threads));
     for (int t = 0; t < threads; ++t) {
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
-        if (w.rows == 0) w.allocate(s.h.stride(), kStripRows, numerics_.scheme == Scheme::waf);
+        if (w.rows == 0)
+            w.allocate(s.h.stride(), s.h.column0(), kStripRows, numerics_.scheme == Scheme::waf);
         w.carried_for = std::numeric_limits<int>::min();  // a new state: nothing carries over
     }
     // The regimes are computed row by row with the pressure stage (advect_strip) and

@@ -18,10 +18,10 @@ inline bool same_bits(std::span<const double> a, std::span<const double> b) {
 }
 
 // The fields' stored values: a field of one row for all (Field2D::same_in_every_row)
-// differs from a full one of the same values.
-// Every cell, ghosts included (not the rows' padding, which no cell is).
+// differs from a full one of the same values. Every cell, ghosts included (not the
+// rows' padding, which no cell is).
 inline bool same_bits(const Field2D& a, const Field2D& b) {
-    return same_bits(a.packed(), b.packed());
+    return a.same_in_every_row() == b.same_in_every_row() && same_bits(a.packed(), b.packed());
 }
 
 // Two states: depth and both momenta, ghost cells included.

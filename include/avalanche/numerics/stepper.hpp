@@ -215,8 +215,9 @@ class Stepper {
         // computed regimes of (Stepper::state_rows_read_beyond, regime_rows_beyond).
         int rows_read_beyond = 0, regime_rows_beyond = 0;
         // Every array for its positions of a strip of strip_rows rows (at most kStripRows)
-        // at row_stride; the predictors' only with `predictors` (the WAF scheme).
-        void allocate(std::ptrdiff_t row_stride, int strip_rows, bool predictors);
+        // at row_stride, column 0 at column_zero (the state's layout, Field2D::column0); the
+        // predictors' only with `predictors` (the WAF scheme).
+        void allocate(std::ptrdiff_t row_stride, int column_zero, int strip_rows, bool predictors);
         // The invariant bounds hold "no bound" (kNoVelocityBound) until written, in the
         // columns [bounds_c0, bounds_c1) of every row (buffer positions, column -ng at 0),
         // which cover_columns widens to [c0, c1) before a stage reads them.
