@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/numerics/cell_rows.hpp"
@@ -308,8 +309,11 @@ RunStatistics Simulation::run() {
     // accumulated round-off does not add a sliver step.
     const double eps_t = 1e-9 * std::max(1.0, t_end);
 
+    // The stable step the last step computed of the state it left (stable_dt_of_last_step),
+    // kept only while nothing else has changed that state.
+    std::optional<double> next_dt;
     while (t < t_end - eps_t) {
-        double dt = stepper_.stable_dt(state_);
+        double dt = next_dt ? *next_dt : stepper_.stable_dt(state_);
         if (!std::isfinite(dt)) {
             reason = stepper_.active_box().empty() ? EndReason::no_material : EndReason::stopped_at_rest;
             break;
@@ -328,10 +332,15 @@ RunStatistics Simulation::run() {
             remember_last_good();
         }
         stepper_.step(state_, dt);
-        if (!sinks_.empty()) drain_sinks();
+        next_dt = stepper_.stable_dt_of_last_step();
+        if (!sinks_.empty()) {
+            drain_sinks();
+            next_dt.reset();
+        }
         ++steps;
         t = hits_output ? target : t + dt;
         if (inject_fault_step_ != 0 && steps == inject_fault_step_ && !stepper_.active_box().empty()) {
+            next_dt.reset();
             const ActiveBox& b = stepper_.active_box();
             state_.h((b.i0 + b.i1) / 2, (b.j0 + b.j1) / 2) = std::numeric_limits<double>::quiet_NaN();
         }

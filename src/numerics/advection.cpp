@@ -583,6 +583,10 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
         if (rest_in_ != nullptr)
             keep_held_at_rest(rest_in_ + kf, w.fx_h.at(kw), w.fy_h.at(kw), w.stride, hu_new, hv_new,
                               rest_out_ ? rest_out_ + kf : nullptr, b.i0, b.i1);
+        // The next step's CFL rate of the row, while it is in the cache (a pass of its
+        // own read the state from memory again); a waiting row's once it is in s.
+        if (rate_in_update_ && !wait)
+            w.cfl_rate = std::max(w.cfl_rate, cfl_rate_of_row(s, r, b.i0, b.i1));
     }
 
     // 6. Volume through the open edges, after scaling, per boundary face (summed in
@@ -652,6 +656,7 @@ void Stepper::advect(State& s, double tau) {
             w.allocate(s.h.stride(), s.h.column0(), kStripRows, numerics_.scheme == Scheme::waf);
         w.carried_for = std::numeric_limits<int>::min();  // a new state: nothing carries over
     }
+    for (StripBuffers& w : strips_) w.cfl_rate = 0.0;
     // The regimes are computed row by row with the pressure stage (advect_strip) and
     // replace the previous ones in regime_ as they go, but for the rows near a segment's
     // inner ends, which the neighbouring segment also computes from the previous ones.
@@ -791,6 +796,8 @@ void Stepper::advect(State& s, double tau) {
                 std::copy_n(wr.h.data() + k, width, s.h.row(j) + wr.i0);
                 std::copy_n(wr.hu.data() + k, width, s.hu.row(j) + wr.i0);
                 std::copy_n(wr.hv.data() + k, width, s.hv.row(j) + wr.i0);
+                if (rate_in_update_)
+                    w.cfl_rate = std::max(w.cfl_rate, cfl_rate_of_row(s, j, wr.i0, wr.i1));
             }
         }
     }

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "avalanche/numerics/stepper.hpp"
@@ -36,6 +37,10 @@ struct Result {
     // The most rows beyond its own a strip read of the state, and computed regimes of
     // (Stepper::state_rows_read_beyond, regime_rows_beyond).
     int rows_read_beyond = 0, regime_rows_beyond = 0;
+    // Steps after which the step's own stable step (Stepper::stable_dt_of_last_step, from
+    // the rows' CFL rates its last advection took as it updated them) was missing or not
+    // stable_dt of the state it left, to the bit.
+    int kept_dt_mismatches = 0;
 };
 
 // The wavy dam of run() (below) on a 10 deg plane.
@@ -70,13 +75,19 @@ Result run(Scheme scheme, Boundary boundary, int threads, bool all_to_first = fa
     Stepper stepper(g, t, m, n, 1e-4);
     stepper.set_all_strips_to_first_thread(all_to_first);
     stepper.reset_active_box(s);
-    for (int step = 0; step < 10; ++step) stepper.step(s, 0.5 * stepper.stable_dt(s));
+    int mismatches = 0;
+    for (int step = 0; step < 10; ++step) {
+        stepper.step(s, 0.5 * stepper.stable_dt(s));
+        const std::optional<double> kept = stepper.stable_dt_of_last_step();
+        if (!kept || *kept != stepper.stable_dt(s)) ++mismatches;
+    }
     return {s,
             stepper.outflow_volume(),
             stepper.regime(),
             stepper.strip_steals(),
             stepper.state_rows_read_beyond(),
-            stepper.regime_rows_beyond()};
+            stepper.regime_rows_beyond(),
+            mismatches};
 }
 
 using test::same_bits;
@@ -101,6 +112,24 @@ TEST(AdvectionStrips, OneAndTwoThreadsGiveTheSameBits) {
             EXPECT_GT(one.state.h.raw().size(), 0u);
             if (boundary == Boundary::open) {
                 EXPECT_GT(one.outflow, 0.0);
+            }
+        }
+    }
+}
+
+// The last advection of a step takes the CFL rate of each row as it updates it, and of
+// a row another segment reads once it is stored (advect()): every step's must be
+// stable_dt of the state it left, to the bit, whoever updated which rows.
+TEST(AdvectionStrips, TheStepsOwnStableStepIsStableDtOfTheStateItLeft) {
+    for (const Scheme scheme : {Scheme::waf, Scheme::godunov}) {
+        for (const Boundary boundary : {Boundary::open, Boundary::wall}) {
+            for (const int threads : {1, 2, 3, 7}) {
+                EXPECT_EQ(run(scheme, boundary, threads).kept_dt_mismatches, 0)
+                    << "scheme " << static_cast<int>(scheme) << " boundary "
+                    << static_cast<int>(boundary) << " threads " << threads;
+                EXPECT_EQ(run(scheme, boundary, threads, true).kept_dt_mismatches, 0)
+                    << "strips taken, scheme " << static_cast<int>(scheme) << " boundary "
+                    << static_cast<int>(boundary) << " threads " << threads;
             }
         }
     }

@@ -114,11 +114,19 @@ TEST_P(RandomSweep, BandsGiveTheWholeBoxsRunToTheBit) {
         stepper.set_whole_box_advection(whole_box);
         stepper.reset_active_box(out.state);
         double t = 0.0;
+        std::optional<double> kept;  // the last step's own stable step (Simulation::run's)
         for (; out.steps < kStepperSteps && t < scene.numerics.t_end; ++out.steps) {
             // No finite step: the material is at rest (Simulation::run ends there).
             const double dt = stepper.stable_dt(out.state);
+            // The CFL rates the step's last advection took of the rows it updated: the
+            // same bits as a pass over the state it left, and there after every L S L step.
+            if (kept)
+                EXPECT_EQ(*kept, dt) << "step " << out.steps;
+            else if (out.steps > 0 && std::isfinite(dt))
+                EXPECT_NE(scene.numerics.splitting, Splitting::lsl) << "step " << out.steps;
             if (!std::isfinite(dt)) break;
             stepper.step(out.state, dt);
+            kept = stepper.stable_dt_of_last_step();
             t += dt;
             for (const ActiveBox& b : stepper.bands()) out.band_cells += b.cells();
             out.box_cells += stepper.active_box().cells();

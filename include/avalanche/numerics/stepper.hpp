@@ -14,6 +14,7 @@
 // The state's ghost cells are filled here from the boundary conditions.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -41,6 +42,16 @@ class Stepper {
 
     // Advances the state by dt over the active box (recomputed from the state).
     void step(State& s, double dt);
+
+    // stable_dt of the state the last step() left, computed by that step without a pass
+    // of its own: an L S L step's last advection takes the CFL rate of each row as it
+    // updates it, while the row is in the cache (docs/performance.md, "The CFL rate in
+    // the last update"). Bit for bit stable_dt(s) of that state: the max is exact, and
+    // what the step does after the update (the thin-layer rule, the ghost cells) changes
+    // no cell the rate counts. Empty where the step computed none (an S L S step, whose
+    // last operator is the friction stage; no cell to advect) and for a state changed
+    // after the step: the caller knows that, the stepper does not.
+    [[nodiscard]] std::optional<double> stable_dt_of_last_step() const { return dt_of_last_step_; }
 
     // Recomputes the active box from scratch (after the state was set from outside);
     // with `holding`, a box that holds every cell with material, searched in it only.
@@ -214,6 +225,9 @@ class Stepper {
         // The most rows beyond its own that a strip of this thread read of the state, and
         // computed regimes of (Stepper::state_rows_read_beyond, regime_rows_beyond).
         int rows_read_beyond = 0, regime_rows_beyond = 0;
+        // The largest CFL rate of the rows this thread updated in this advection, when
+        // the step asks for it (Stepper::rate_in_update_).
+        double cfl_rate = 0.0;
         // Every array for its positions of a strip of strip_rows rows (at most kStripRows)
         // at row_stride, column 0 at column_zero (the state's layout, Field2D::column0); the
         // predictors' only with `predictors` (the WAF scheme).
@@ -307,6 +321,14 @@ class Stepper {
     double energy_budget_;  // see energy_budget(); +infinity = not set
     bool budget_set_ = false;
     bool threaded_ = false;
+    // The advection takes the CFL rate of the rows it updates (the last advection of an
+    // L S L step), and what that gave: stable_dt_of_last_step().
+    bool rate_in_update_ = false;
+    std::optional<double> dt_of_last_step_;
+    // The conservative celerity coefficients of the CFL rate (stable_dt) and the rate of
+    // row j over its band's columns.
+    [[nodiscard]] std::pair<double, double> cfl_k() const;
+    [[nodiscard]] double cfl_rate_of_row(const State& s, int j, int i0, int i1) const;
     double outflow_volume_ = 0.0;
     std::array<std::vector<double>, 4>
         edge_outflow_;  // per face of the west, east, south, north edges
