@@ -190,8 +190,8 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
     RegimeFlags* row = w.regime_row.data() + w.column0;
     // The row's previous regime, which regime_row replaces cell by cell (regime_ keeps it
     // in another form: stepper.hpp).
-    const RegimeFlags* kept = regime_.data() + s.h.index(ia, r);
-    std::transform(kept, kept + (ib - ia), row + ia, stored_regime);
+    const StoredRegime* kept = regime_.data() + s.h.index(ia, r);
+    std::transform(kept, kept + (ib - ia), row + ia, regime_of_stored);
     // The terms of rows r - 2 .. r + 2 (over the columns row r's x-differences read)
     // that the ring does not hold yet. The regime rows of a block of strips come in
     // ascending order, so the ring holds the rest; a new block starts with terms_end at
@@ -660,7 +660,8 @@ void Stepper::advect(State& s, double tau) {
     // The regimes are computed row by row with the pressure stage (advect_strip) and
     // replace the previous ones in regime_ as they go, but for the rows near a segment's
     // inner ends, which the neighbouring segment also computes from the previous ones.
-    if (regime_.size() != s.h.raw().size()) regime_ = CellVector<RegimeFlags>(s.h.raw().size());  // at start
+    if (regime_.size() != s.h.raw().size())
+        regime_ = CellVector<StoredRegime>(s.h.raw().size());  // at start
     // The flags of the faces friction holds (rest_faces.hpp): after the friction stage
     // those it set; otherwise (the first advection of an L S L step) those of its cells
     // that the advection after it left quiet.
@@ -821,11 +822,11 @@ void Stepper::advect(State& s, double tau) {
     // at start (regime_row); the bands computed those of their own rows and columns.
     if (regimes && !(bands_.size() == 1 && bands_.front() == b)) {
         const ActiveBox& pc = per_cell;
-        const RegimeFlags at_start = stored_regime(kRegimeAtStart);
+        const StoredRegime at_start = stored_regime(kRegimeAtStart);
         std::size_t q = 0;  // the band that stores row r's regimes (keep_regime_row)
         for (int r = pc.j0; r < pc.j1; ++r) {
             while (q + 1 < bands_.size() && r >= bands_[q].j1) ++q;
-            RegimeFlags* row = regime_.data() + s.h.index(0, r);
+            StoredRegime* row = regime_.data() + s.h.index(0, r);
             if (bands_[q].empty()) {
                 std::fill(row + pc.i0, row + pc.i1, at_start);
                 continue;

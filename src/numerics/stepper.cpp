@@ -177,13 +177,13 @@ void Stepper::make_bands() {
 
 CellVector<RegimeFlags> Stepper::regime() const {
     CellVector<RegimeFlags> r(regime_.size());
-    std::transform(regime_.begin(), regime_.end(), r.begin(), stored_regime);
+    std::transform(regime_.begin(), regime_.end(), r.begin(), regime_of_stored);
     return r;
 }
 
-void Stepper::set_regime(CellVector<RegimeFlags> r) {
-    std::transform(r.begin(), r.end(), r.begin(), stored_regime);
-    regime_ = std::move(r);
+void Stepper::set_regime(const CellVector<RegimeFlags>& r) {
+    regime_ = CellVector<StoredRegime>(r.size());
+    std::transform(r.begin(), r.end(), regime_.begin(), stored_regime);
 }
 
 CellVector<HeldFlag> Stepper::held_at_rest() const { return held_quiet_; }

@@ -78,7 +78,7 @@ class Stepper {
     // checkpoint must restore it to reproduce the uninterrupted run bitwise. A copy:
     // the stepper keeps the flags in another form (regime_).
     [[nodiscard]] CellVector<RegimeFlags> regime() const;
-    void set_regime(CellVector<RegimeFlags> r);
+    void set_regime(const CellVector<RegimeFlags>& r);
     // With numerics.rest_faces: the cells the next advection counts as held at rest by
     // friction (rest_faces.hpp; the state's layout; empty before the first friction
     // stage). A restart from a checkpoint restores it, as the regimes.
@@ -337,7 +337,7 @@ class Stepper {
     // holds 0, so the grid's flags are made without writing them and only the rows the
     // flow reaches are ever touched (field_storage.hpp). Assigning kRegimeAtStart to
     // every cell at the first advection took 7 ms of benchmark (d)'s 79 ms run.
-    CellVector<RegimeFlags> regime_;
+    CellVector<StoredRegime> regime_;
     // numerics.rest_faces (rest_faces.hpp): held_ marks the cells the last friction stage
     // stopped; held_quiet_ those of them no mass entered or left in the advection after
     // it, for the next step's first advection under L S L (the one after S reads held_).
