@@ -585,7 +585,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
                               rest_out_ ? rest_out_ + kf : nullptr, b.i0, b.i1);
         // The next step's CFL rate of the row, while it is in the cache (a pass of its
         // own read the state from memory again); a waiting row's once it is in s.
-        if (rate_in_update_ && !wait)
+        if (take_cfl_rate_ && !wait)
             w.cfl_rate = std::max(w.cfl_rate, cfl_rate_of_row(s, r, b.i0, b.i1));
     }
 
@@ -797,7 +797,7 @@ void Stepper::advect(State& s, double tau) {
                 std::copy_n(wr.h.data() + k, width, s.h.row(j) + wr.i0);
                 std::copy_n(wr.hu.data() + k, width, s.hu.row(j) + wr.i0);
                 std::copy_n(wr.hv.data() + k, width, s.hv.row(j) + wr.i0);
-                if (rate_in_update_)
+                if (take_cfl_rate_)
                     w.cfl_rate = std::max(w.cfl_rate, cfl_rate_of_row(s, j, wr.i0, wr.i1));
             }
         }

@@ -276,6 +276,10 @@ double Stepper::cfl_rate_of_row(const State& s, int j, int i0, int i1) const {
                         i0, i1);
 }
 
+double Stepper::dt_of_rate(double rate) const {
+    return rate > 0.0 ? numerics_.cfl / rate : std::numeric_limits<double>::infinity();
+}
+
 double Stepper::stable_dt(const State& s) const {
     double rate = 0.0;  // max over cells of (|u| + a_x)/dx and (|v| + a_y)/dy
     const ActiveBox b = box_;
@@ -287,7 +291,7 @@ double Stepper::stable_dt(const State& s) const {
         const auto [i0, i1] = band_columns_[static_cast<std::size_t>(j - b.j0)];
         if (i0 < i1) rate = std::max(rate, cfl_rate_of_row(s, j, i0, i1));
     }
-    return rate > 0.0 ? numerics_.cfl / rate : std::numeric_limits<double>::infinity();
+    return dt_of_rate(rate);
 }
 
 void Stepper::step(State& s, double dt) {
@@ -307,17 +311,19 @@ void Stepper::step(State& s, double dt) {
         apply_sources(s, dt);
         // The rows the last advection updates are every row stable_dt would read
         // (band_columns_ are the bands' columns, and the bands' strips cover their rows).
-        rate_in_update_ = true;
+        take_cfl_rate_ = true;
         advect(s, 0.5 * dt);
-        rate_in_update_ = false;
+        take_cfl_rate_ = false;
         double rate = 0.0;
         for (const StripBuffers& w : strips_) rate = std::max(rate, w.cfl_rate);
-        dt_of_last_step_ =
-            rate > 0.0 ? numerics_.cfl / rate : std::numeric_limits<double>::infinity();
+        dt_of_last_step_ = dt_of_rate(rate);
     } else {
         apply_sources(s, 0.5 * dt);
         advect(s, dt);
+        // The friction stage is the last operator: it takes the rates (apply_sources).
+        take_cfl_rate_ = true;
         apply_sources(s, 0.5 * dt);
+        take_cfl_rate_ = false;
     }
     cell_updates_ += box_.cells();
     band_cell_updates_ += band_cells;
@@ -434,7 +440,9 @@ void Stepper::apply_sources(State& s, double dt) {
     const int m = numerics_.source_substeps;
     const SourceRowParams p{dt / m, m, tan_delta_, numerics_.gravity, energy_budget_};
     const bool curv = terrain_.has_curvature, metric = terrain_.has_metric;
-#pragma omp parallel for schedule(dynamic, 8) if (threaded_)
+    const bool take_rate = take_cfl_rate_;
+    double rate = 0.0;  // stable_dt's, of the rows as this stage leaves them
+#pragma omp parallel for reduction(max : rate) schedule(dynamic, 8) if (threaded_)
     for (int j = b.j0; j < b.j1; ++j) {
         // The DEM frame stores no ax, ay, gn: the kernel computes them from sx, sy.
         const SourceRowTerrain t{metric ? nullptr : terrain_.ax.row(j),
@@ -452,7 +460,9 @@ void Stepper::apply_sources(State& s, double dt) {
         if (rest && i0 < i1)
             held_at_rest_row(s.h.row(j), s.hu.row(j), s.hv.row(j), h_min_,
                              held_.data() + s.h.index(0, j), i0, i1);
+        if (take_rate && i0 < i1) rate = std::max(rate, cfl_rate_of_row(s, j, i0, i1));
     }
+    if (take_rate) dt_of_last_step_ = dt_of_rate(rate);
     after_sources_ = true;
     films_settled_ = false;  // the films of the bands were given momentum
 }

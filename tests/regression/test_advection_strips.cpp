@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "avalanche/numerics/stepper.hpp"
@@ -62,7 +63,8 @@ State dam_state(const Grid& g) {
 // all_to_first, every advection's strips given to the first thread at its start, which
 // waits until the others have claimed theirs (Stepper::set_all_strips_to_first_thread).
 Result run(Scheme scheme, Boundary boundary, int threads, bool all_to_first = false,
-           EarthPressureModel pressure = EarthPressureModel::savage_hutter) {
+           EarthPressureModel pressure = EarthPressureModel::savage_hutter,
+           Splitting splitting = Splitting::lsl) {
     const analytic::ScopedThreads scoped(threads);
     const Grid g = analytic::box_grid(0.0, 220.0, 0.0, 130.0, 1.0);
     const TerrainFields t = analytic::plane_terrain(g, 10.0, 9.81);
@@ -72,6 +74,7 @@ Result run(Scheme scheme, Boundary boundary, int threads, bool all_to_first = fa
     NumericsParams n;
     n.scheme = scheme;
     n.boundary = boundary;
+    n.splitting = splitting;
     Stepper stepper(g, t, m, n, 1e-4);
     stepper.set_all_strips_to_first_thread(all_to_first);
     stepper.reset_active_box(s);
@@ -117,19 +120,27 @@ TEST(AdvectionStrips, OneAndTwoThreadsGiveTheSameBits) {
     }
 }
 
-// The last advection of a step takes the CFL rate of each row as it updates it, and of
-// a row another segment reads once it is stored (advect()): every step's must be
-// stable_dt of the state it left, to the bit, whoever updated which rows.
+// The last advection of an L S L step takes the CFL rate of each row as it updates it,
+// and of a row another segment reads once it is stored (advect()); an S L S step's
+// closing friction stage, of each row it leaves. Every step's must be stable_dt of the
+// state it left, to the bit, whoever updated which rows.
 TEST(AdvectionStrips, TheStepsOwnStableStepIsStableDtOfTheStateItLeft) {
+    const auto sh = EarthPressureModel::savage_hutter;
     for (const Scheme scheme : {Scheme::waf, Scheme::godunov}) {
         for (const Boundary boundary : {Boundary::open, Boundary::wall}) {
             for (const int threads : {1, 2, 3, 7}) {
-                EXPECT_EQ(run(scheme, boundary, threads).kept_dt_mismatches, 0)
-                    << "scheme " << static_cast<int>(scheme) << " boundary "
-                    << static_cast<int>(boundary) << " threads " << threads;
+                const auto where = [&](const char* what) {
+                    return std::string(what) + " scheme " +
+                           std::to_string(static_cast<int>(scheme)) + " boundary " +
+                           std::to_string(static_cast<int>(boundary)) + " threads " +
+                           std::to_string(threads);
+                };
+                EXPECT_EQ(run(scheme, boundary, threads).kept_dt_mismatches, 0) << where("L S L");
                 EXPECT_EQ(run(scheme, boundary, threads, true).kept_dt_mismatches, 0)
-                    << "strips taken, scheme " << static_cast<int>(scheme) << " boundary "
-                    << static_cast<int>(boundary) << " threads " << threads;
+                    << where("L S L, strips taken");
+                EXPECT_EQ(
+                    run(scheme, boundary, threads, false, sh, Splitting::sls).kept_dt_mismatches, 0)
+                    << where("S L S");
             }
         }
     }

@@ -44,13 +44,13 @@ class Stepper {
     void step(State& s, double dt);
 
     // stable_dt of the state the last step() left, computed by that step without a pass
-    // of its own: an L S L step's last advection takes the CFL rate of each row as it
-    // updates it, while the row is in the cache (docs/performance.md, "The CFL rate in
-    // the last update"). Bit for bit stable_dt(s) of that state: the max is exact, and
-    // what the step does after the update (the thin-layer rule, the ghost cells) changes
-    // no cell the rate counts. Empty where the step computed none (an S L S step, whose
-    // last operator is the friction stage; no cell to advect) and for a state changed
-    // after the step: the caller knows that, the stepper does not.
+    // of its own: the step's last operator takes the CFL rate of each row as it leaves
+    // it, while the row is in the cache (docs/performance.md, "The CFL rate in the last
+    // update"): an L S L step's second advection, an S L S step's closing friction
+    // stage. Bit for bit stable_dt(s) of that state: the max is exact, and what an
+    // advection does after its update (the thin-layer rule, the ghost cells) changes no
+    // cell the rate counts. Empty where the step computed none (no cell to advect) and
+    // for a state changed after the step: the caller knows that, the stepper does not.
     [[nodiscard]] std::optional<double> stable_dt_of_last_step() const { return dt_of_last_step_; }
 
     // Recomputes the active box from scratch (after the state was set from outside);
@@ -226,7 +226,7 @@ class Stepper {
         // computed regimes of (Stepper::state_rows_read_beyond, regime_rows_beyond).
         int rows_read_beyond = 0, regime_rows_beyond = 0;
         // The largest CFL rate of the rows this thread updated in this advection, when
-        // the step asks for it (Stepper::rate_in_update_).
+        // the step asks for it (Stepper::take_cfl_rate_).
         double cfl_rate = 0.0;
         // Every array for its positions of a strip of strip_rows rows (at most kStripRows)
         // at row_stride, column 0 at column_zero (the state's layout, Field2D::column0); the
@@ -321,10 +321,12 @@ class Stepper {
     double energy_budget_;  // see energy_budget(); +infinity = not set
     bool budget_set_ = false;
     bool threaded_ = false;
-    // The advection takes the CFL rate of the rows it updates (the last advection of an
-    // L S L step), and what that gave: stable_dt_of_last_step().
-    bool rate_in_update_ = false;
+    // The operator takes the CFL rate of the rows it leaves (the step's last: the second
+    // advection of L S L, the closing friction stage of S L S), and what that gave:
+    // stable_dt_of_last_step().
+    bool take_cfl_rate_ = false;
     std::optional<double> dt_of_last_step_;
+    [[nodiscard]] double dt_of_rate(double rate) const;  // C / rate, +infinity for 0
     // The conservative celerity coefficients of the CFL rate (stable_dt) and the rate of
     // row j over its band's columns.
     [[nodiscard]] std::pair<double, double> cfl_k() const;
