@@ -803,6 +803,11 @@ void Stepper::advect(State& s, double tau) {
         }
     }
     strip_steals_ += static_cast<std::uint64_t>(claims.steals());
+    if (take_cfl_rate_) {
+        double rate = 0.0;
+        for (const StripBuffers& w : strips_) rate = std::max(rate, w.cfl_rate);
+        dt_of_last_step_ = dt_of_rate(rate);
+    }
     for (const StripBuffers& w : strips_) {
         state_rows_read_beyond_ = std::max(state_rows_read_beyond_, w.rows_read_beyond);
         regime_rows_beyond_ = std::max(regime_rows_beyond_, w.regime_rows_beyond);

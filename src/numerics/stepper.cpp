@@ -314,9 +314,6 @@ void Stepper::step(State& s, double dt) {
         take_cfl_rate_ = true;
         advect(s, 0.5 * dt);
         take_cfl_rate_ = false;
-        double rate = 0.0;
-        for (const StripBuffers& w : strips_) rate = std::max(rate, w.cfl_rate);
-        dt_of_last_step_ = dt_of_rate(rate);
     } else {
         apply_sources(s, 0.5 * dt);
         advect(s, dt);

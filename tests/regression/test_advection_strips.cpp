@@ -39,7 +39,7 @@ struct Result {
     // (Stepper::state_rows_read_beyond, regime_rows_beyond).
     int rows_read_beyond = 0, regime_rows_beyond = 0;
     // Steps after which the step's own stable step (Stepper::stable_dt_of_last_step, from
-    // the rows' CFL rates its last advection took as it updated them) was missing or not
+    // the rows' CFL rates its last operator took as it left them) was missing or not
     // stable_dt of the state it left, to the bit.
     int kept_dt_mismatches = 0;
 };
