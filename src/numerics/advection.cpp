@@ -65,7 +65,8 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int column_zero,
     rows = strip_rows + 8;
     // Each array's positions, from the row ranges of advect_strip for a strip [J, J + S)
     // at position 4 (base J - 4), with what its readers reach beyond them:
-    // - su, sv: the velocity rows [J - 4, J + S + 4).
+    // - su, sv: the velocity rows [J - 4, J + S + 5) (the last for the next strip only:
+    //   advect_strip, step 1).
     // - The per-cell stage (cx .. speed_hi) and the x-predictor (pred_*): rows
     //   [J - 3, J + S + 3), the y-faces' four-cell stencils [J - 3, J + S + 2) included.
     // - yfo_*: the y-predictor's face rows J - 1 .. J + S + 1.
@@ -80,7 +81,7 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int column_zero,
     const auto make = [&](std::initializer_list<StripRows*> arrays, int first_row, int end_row) {
         for (StripRows* a : arrays) a->allocate(stride, first_row, end_row);
     };
-    make({&su, &sv}, 0, S + 8);
+    make({&su, &sv}, 0, S + 9);
     make({&cx, &cy, &ax, &ay, &u_lo, &u_hi, &v_lo, &v_hi, &speed_hi}, 1, S + 7);
     make({&fx_h, &fx_hu, &fx_hv, &factor}, 3, S + 5);
     make({&fy_h, &fy_hu, &fy_hv}, 3, S + 6);
@@ -129,11 +130,13 @@ void Stepper::StripBuffers::carry_rows(int by, bool waf, int i0, int i1) {
         int first, count;
     };
     const Carried first_order[] = {
-        {&su, 1, 3},        {&sv, 1, 3},    {&cx, 1, 2},    {&cy, 1, 2},
+        // clang-format off
+        {&su, 1, 4},        {&sv, 1, 4},    {&cx, 1, 2},    {&cy, 1, 2},
         {&ax, 1, 2},        {&ay, 1, 2},
         {&u_lo, -1, 4},     {&u_hi, -1, 4}, {&v_lo, -1, 4}, {&v_hi, -1, 4},
         {&speed_hi, -1, 4}, {&fx_h, 0, 1},  {&fx_hu, 0, 1}, {&fx_hv, 0, 1},
         {&fy_h, 0, 2},      {&fy_hu, 0, 2}, {&fy_hv, 0, 2}, {&factor, -1, 2}};
+    // clang-format on
     const Carried predictors[] = {{&yfo_h, 1, 1},  {&yfo_qn, 1, 1},  {&yfo_qt, 1, 1},
                                   {&pred_h, 0, 3}, {&pred_hu, 0, 3}, {&pred_hv, 0, 3},
                                   {&pred_u, 0, 3}, {&pred_v, 0, 3}, {&pred_a, 0, 3}};
@@ -197,18 +200,28 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
     // ascending order, so the ring holds the rest; a new block starts with terms_end at
     // INT_MIN (advect_strip). None of these state rows has been written by a strip yet
     // (advect_strip), so the terms kept are the ones the rows would give now.
+    // A row's velocity quotients come with its terms, from the same read of the state
+    // rows, when they are the next ones the strip needs (w.vel_end, below
+    // w.vel_until: advect_strip, step 1); over the terms' columns, which hold the
+    // per-cell stage's [ia, ib).
     const int c0 = std::max(ia - 2, lo), c1 = std::min(ib + 2, hi + 1);
     const bool metric = terrain_.has_metric;
     w.terms_end = std::max(w.terms_end, clamped(r - kRegimeTermsReach));
-    for (int j = w.terms_end; j <= clamped(r + kRegimeTermsReach); ++j)
+    for (int j = w.terms_end; j <= clamped(r + kRegimeTermsReach); ++j) {
+        const bool velocity = j == w.vel_end && j < w.vel_until;
         from_line_start(c0, c1, [&](int a, int e) {
+            RegimeTermsRow out{w.ring_row(w.term_wet, j), w.ring_row(w.term_still_x, j),
+                               w.ring_row(w.term_still_y, j)};
+            if (velocity) {
+                out.u = w.su.at(w.k(0, j));
+                out.v = w.sv.at(w.k(0, j));
+            }
             regime_terms_row(s.h.row(j), s.hu.row(j), s.hv.row(j),
                              metric ? terrain_.sx.row(j) : nullptr,
-                             metric ? terrain_.sy.row(j) : nullptr, h_min_, rest_speed,
-                             {w.ring_row(w.term_wet, j), w.ring_row(w.term_still_x, j),
-                              w.ring_row(w.term_still_y, j)},
-                             a, e);
+                             metric ? terrain_.sy.row(j) : nullptr, h_min_, rest_speed, out, a, e);
         });
+        if (velocity) ++w.vel_end;
+    }
     w.terms_end = std::max(w.terms_end, clamped(r + kRegimeTermsReach) + 1);
 
     const int jm = clamped(r - 1), jp = clamped(r + 1), jmm = clamped(r - 2), jpp = clamped(r + 2);
@@ -312,7 +325,8 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     const int q0 = std::max(std::min({J - 1, x0 - 1, y0 - 1, xp0}), pr0);
     const int q1 = std::min(std::max({Je + 1, x1 + 1, y1, xp1}), pr1);
     const bool regimes = material_.earth_pressure != EarthPressureModel::isotropic;
-    const int v0 = std::max(J - 4, -ng), v1 = std::min(Je + 4, ny + ng);  // velocity quotients
+    // The velocity quotients' rows (step 1).
+    const int v0 = std::max(J - 4, -ng), v1 = std::min(Je + (regimes ? 5 : 4), ny + ng);
 
     // The rows beyond [J, Je) that these ranges read of the state: the velocity
     // quotients', the regime terms' of the pressure rows, the first-order faces' (rows
@@ -328,23 +342,39 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
 
     // 1. The velocity quotients of the state, once per cell, rows v0 .. v1 - 1: for the
     // pressure stage (rows q0 .. q1 - 1) and the first-order fluxes on the state (faces
-    // reading rows J - 3 .. Je + 2), and row Je + 3 for the segment's next strip
-    // (carry_rows). Row J - 4 is read by none of them (with v0 = J - 3 the 18
+    // reading rows J - 3 .. Je + 2), and rows Je + 3 and, with regimes, Je + 4 for the
+    // segment's next strip (carry_rows; without regimes that strip computes row Je + 4
+    // over what is carried). Row J - 4 is read by none of them (with v0 = J - 3 the 18
     // bench_equivalence hashes were unchanged, 2026-12-06; not kept: it would save only
-    // one row at a segment's start). Then the pressure coefficients and invariant bounds.
-    for (int r = std::max(v0, w.vel_end); r < v1; ++r) {
-        const std::ptrdiff_t k = w.k(0, r);
-        from_line_start(pc0, pc1, [&](int ia, int ib) {
-            state_velocity_row(s.h.row(r), s.hu.row(r), s.hv.row(r), w.su.at(k), w.sv.at(k), ia,
-                               ib);
-        });
-    }
-    w.vel_end = std::max(w.vel_end, v1);
+    // one row at a segment's start). With regimes each row's come with its regime terms
+    // (regime_row_into), which reach row Je + 4 here, from the same read of the state
+    // (1.2 % of case (a)'s WAF run, docs/performance.md); the rows those do not cover are
+    // computed on their own, before the regime rows (none, but for a segment's first
+    // rows near the grid's bottom) and after them (at the box's top). Then the pressure
+    // coefficients and invariant bounds.
+    const auto velocity_rows_until = [&](int end) {
+        for (; w.vel_end < end; ++w.vel_end) {
+            const int r = w.vel_end;
+            const std::ptrdiff_t k = w.k(0, r);
+            from_line_start(pc0, pc1, [&](int ia, int ib) {
+                state_velocity_row(s.h.row(r), s.hu.row(r), s.hv.row(r), w.su.at(k), w.sv.at(k), ia,
+                                   ib);
+            });
+        }
+    };
+    w.vel_end = std::max(w.vel_end, v0);
+    w.vel_until = v1;
+    const int p_first = std::max(q0, w.p_end);
+    // The first row whose terms regime_row_into computes (if it runs: p_first < q1).
+    const int terms_first = regimes && p_first < q1
+                                ? std::max(w.terms_end, std::max(p_first - kRegimeTermsReach, -ng))
+                                : v1;
+    velocity_rows_until(std::min(terms_first, v1));
 
     // The regime of each pressure row first (regime_row_into): its previous regime and
     // the state's rows r - 2 .. r + 2, none of which a strip has written yet.
     const double rest_speed = 0.5 * tan_delta_ * numerics_.gravity * tau;  // see regime_row
-    for (int r = std::max(q0, w.p_end); r < q1; ++r) {
+    for (int r = p_first; r < q1; ++r) {
         if (regimes) {
             regime_row_into(s, rest_speed, r, pc0, pc1, w);
             keep_regime_row(s, r, pc0, pc1, w);
@@ -352,6 +382,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
         from_line_start(pc0, pc1, [&](int ia, int ib) { pressure_row(s, r, ia, ib, w); });
     }
     w.p_end = std::max(w.p_end, q1);
+    velocity_rows_until(v1);
 
     const double* sh = s.h.raw().data();
     const double* shu = s.hu.raw().data();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "avalanche/numerics/face_flux_rows.hpp"
@@ -74,12 +75,16 @@ AVALANCHE_INLINE double next_regime(double was_active, double central, double le
 
 // ---------------------------------------------------------------- per cell, per row
 
-template <bool Metric>
+// With Velocity, also the velocity quotients u, v, as state_velocity_row computes them
+// (one division for both): the state rows are read once for both (case (a): the
+// quotients' own pass read h, hu, hv from memory and the terms read them again).
+template <bool Metric, bool Velocity>
 AVALANCHE_SIMD_CLONES void terms_clone(const double* __restrict h, const double* __restrict hu,
                                        const double* __restrict hv, const double* __restrict sx,
                                        const double* __restrict sy, double h_min, double rest2,
                                        double* __restrict wet, double* __restrict still_x,
-                                       double* __restrict still_y, int i0, int i1) {
+                                       double* __restrict still_y, double* __restrict u,
+                                       double* __restrict v, int i0, int i1) {
 #pragma omp simd
     for (int i = i0; i < i1; ++i) {
         const double d = h[i];
@@ -91,6 +96,11 @@ AVALANCHE_SIMD_CLONES void terms_clone(const double* __restrict h, const double*
         wet[i] = w;
         still_x[i] = w * (hu[i] * hu[i] * mx <= rest2 * (d * d) ? 1.0 : 0.0);
         still_y[i] = w * (hv[i] * hv[i] * my <= rest2 * (d * d) ? 1.0 : 0.0);
+        if constexpr (Velocity) {
+            const double inv = 1.0 / d;
+            u[i] = hu[i] * inv;
+            v[i] = hv[i] * inv;
+        }
     }
 }
 
@@ -188,11 +198,18 @@ void regime_terms_row(const double* h, const double* hu, const double* hv, const
                       const double* sy, double h_min, double rest_speed, const RegimeTermsRow& out,
                       int i0, int i1) noexcept {
     const double rest2 = rest_speed * rest_speed;
+    const auto run = [&](auto metric, auto velocity) {
+        terms_clone<decltype(metric)::value, decltype(velocity)::value>(
+            h, hu, hv, sx, sy, h_min, rest2, out.wet, out.still_x, out.still_y, out.u, out.v, i0,
+            i1);
+    };
+    using yes = std::true_type;
+    using no = std::false_type;
+    const bool velocity = out.u != nullptr;
     if (sx != nullptr)
-        terms_clone<true>(h, hu, hv, sx, sy, h_min, rest2, out.wet, out.still_x, out.still_y, i0, i1);
+        velocity ? run(yes{}, yes{}) : run(yes{}, no{});
     else
-        terms_clone<false>(h, hu, hv, sx, sy, h_min, rest2, out.wet, out.still_x, out.still_y, i0,
-                           i1);
+        velocity ? run(no{}, yes{}) : run(no{}, no{});
 }
 
 void regime_row_from_terms(const RegimeRowInput& in, const RegimeRowTerms& t,

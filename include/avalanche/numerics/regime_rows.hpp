@@ -76,6 +76,11 @@ struct RegimeTermsRow {
     double* wet;
     double* still_x;
     double* still_y;
+    // Where not null, the row's velocity quotients too, u = hu / h and v = hv / h, the
+    // values of state_velocity_row (cell_rows.hpp): the stepper computes both from one
+    // read of the state rows (advection.cpp, regime_row_into).
+    double* u = nullptr;
+    double* v = nullptr;
 };
 
 // sx, sy: the row's surface gradients in the DEM frame, null in bed-fitted frames.

@@ -222,6 +222,9 @@ class Stepper {
         // strip starts at carried_for.
         int carried_for = 0;
         int vel_end = 0, p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
+        // The velocity rows the strip computes end here (regime_row_into computes them
+        // with the terms of their rows while vel_end is below).
+        int vel_until = 0;
         // The most rows beyond its own that a strip of this thread read of the state, and
         // computed regimes of (Stepper::state_rows_read_beyond, regime_rows_beyond).
         int rows_read_beyond = 0, regime_rows_beyond = 0;
