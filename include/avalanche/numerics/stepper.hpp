@@ -102,6 +102,8 @@ class Stepper {
     // work): against 20 000, two threads ran the demo in 8.6-11 s instead of 15-19 s,
     // the chute 18-20 % and the valley 45-55 % faster (docs/performance.md).
     static constexpr std::size_t kMinCellsPerThreadedStep = 4000;
+    // The ghost columns of fewer rows are filled on one thread (fill_ghosts_near).
+    static constexpr int kMinRowsPerThreadedGhostFill = 256;
 
     // The bands of the active box the advection works on this step (make_bands), and a
     // switch that makes it work on the whole box as one band: for the tests that
