@@ -120,6 +120,49 @@ TEST(AdvectionStrips, OneAndTwoThreadsGiveTheSameBits) {
     }
 }
 
+// A grid of enough rows for the ghost columns to be filled on the threads
+// (Stepper::kMinRowsPerThreadedGhostFill) and a wet box for the first step's energy
+// budget to be taken on them: 60 x 300 cells of the flow of dam_state, wet to both side
+// edges, so that the west and east ghosts are read by the faces at every step (the
+// flow leaves through the open east edge, or is reflected by the wall). One thread
+// against two and three: the same bits, outflow and budget.
+TEST(AdvectionStrips, TallGridsFillTheirGhostColumnsOnTheThreadsToTheBit) {
+    const Grid g = analytic::box_grid(0.0, 60.0, 0.0, 300.0, 1.0);
+    ASSERT_GE(g.ny, Stepper::kMinRowsPerThreadedGhostFill);
+    ASSERT_GE(g.cells(), Stepper::kMinCellsPerThreadedStep);
+    const TerrainFields t = analytic::plane_terrain(g, 10.0, 9.81);
+    struct Tall {
+        State state;
+        double outflow = 0.0, budget = 0.0;
+    };
+    const auto tall_run = [&](Boundary boundary, int threads) {
+        const analytic::ScopedThreads scoped(threads);
+        State s = dam_state(g);
+        NumericsParams n;
+        n.boundary = boundary;
+        Stepper stepper(g, t, MaterialParams{}, n, 1e-4);
+        stepper.reset_active_box(s);
+        for (int step = 0; step < 8; ++step) stepper.step(s, 0.5 * stepper.stable_dt(s));
+        return Tall{s, stepper.outflow_volume(), stepper.energy_budget()};
+    };
+    for (const Boundary boundary : {Boundary::open, Boundary::wall}) {
+        const Tall one = tall_run(boundary, 1);
+        EXPECT_TRUE(std::isfinite(one.budget));
+        if (boundary == Boundary::open) {
+            EXPECT_GT(one.outflow, 0.0);
+        }
+        for (const int threads : {2, 3}) {
+            const Tall many = tall_run(boundary, threads);
+            EXPECT_TRUE(same_bits(one.state.h, many.state.h) &&
+                        same_bits(one.state.hu, many.state.hu) &&
+                        same_bits(one.state.hv, many.state.hv))
+                << "boundary " << static_cast<int>(boundary) << " threads " << threads;
+            EXPECT_EQ(one.outflow, many.outflow);
+            EXPECT_EQ(one.budget, many.budget);
+        }
+    }
+}
+
 // The last advection of an L S L step takes the CFL rate of each row as it updates it,
 // and of a row another segment reads once it is stored (advect()); an S L S step's
 // closing friction stage, of each row it leaves. Every step's must be stable_dt of the
