@@ -187,7 +187,7 @@ ActiveBox Stepper::per_cell_box(const ActiveBox& b) const {
 }
 
 void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, int ib,
-                              StripBuffers& w) const {
+                              int velocity_end, StripBuffers& w) const {
     const int ng = kGhostLayers, lo = -ng, hi = grid_.nx + ng - 1, top = grid_.ny + ng - 1;
     const auto clamped = [&](int j) { return std::clamp(j, -ng, top); };  // rows, at the padding
     RegimeFlags* row = w.regime_row.data() + w.column0;
@@ -202,13 +202,13 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
     // (advect_strip), so the terms kept are the ones the rows would give now.
     // A row's velocity quotients come with its terms, from the same read of the state
     // rows, when they are the next ones the strip needs (w.vel_end, below
-    // w.vel_until: advect_strip, step 1); over the terms' columns, which hold the
+    // velocity_end: advect_strip, step 1); over the terms' columns, which hold the
     // per-cell stage's [ia, ib).
     const int c0 = std::max(ia - 2, lo), c1 = std::min(ib + 2, hi + 1);
     const bool metric = terrain_.has_metric;
     w.terms_end = std::max(w.terms_end, clamped(r - kRegimeTermsReach));
     for (int j = w.terms_end; j <= clamped(r + kRegimeTermsReach); ++j) {
-        const bool velocity = j == w.vel_end && j < w.vel_until;
+        const bool velocity = j == w.vel_end && j < velocity_end;
         from_line_start(c0, c1, [&](int a, int e) {
             RegimeTermsRow out{w.ring_row(w.term_wet, j), w.ring_row(w.term_still_x, j),
                                w.ring_row(w.term_still_y, j)};
@@ -363,7 +363,6 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
         }
     };
     w.vel_end = std::max(w.vel_end, v0);
-    w.vel_until = v1;
     const int p_first = std::max(q0, w.p_end);
     // The first row whose terms regime_row_into computes (if it runs: p_first < q1).
     const int terms_first = regimes && p_first < q1
@@ -376,7 +375,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     const double rest_speed = 0.5 * tan_delta_ * numerics_.gravity * tau;  // see regime_row
     for (int r = p_first; r < q1; ++r) {
         if (regimes) {
-            regime_row_into(s, rest_speed, r, pc0, pc1, w);
+            regime_row_into(s, rest_speed, r, pc0, pc1, v1, w);
             keep_regime_row(s, r, pc0, pc1, w);
         }
         from_line_start(pc0, pc1, [&](int ia, int ib) { pressure_row(s, r, ia, ib, w); });

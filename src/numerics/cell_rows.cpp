@@ -306,9 +306,9 @@ AVALANCHE_SIMD_CLONES void state_velocity_clone(const double* __restrict h,
                                                 double* __restrict v, int i0, int i1) {
 #pragma omp simd
     for (int i = i0; i < i1; ++i) {
-        const double inv = 1.0 / h[i];  // one division for both quotients
-        u[i] = hu[i] * inv;
-        v[i] = hv[i] * inv;
+        const VelocityQuotients q = velocity_quotients(h[i], hu[i], hv[i]);
+        u[i] = q.u;
+        v[i] = q.v;
     }
 }
 }  // namespace

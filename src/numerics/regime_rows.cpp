@@ -5,6 +5,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "avalanche/numerics/cell_rows.hpp"
 #include "avalanche/numerics/face_flux_rows.hpp"
 #include "simd_clones.hpp"
 
@@ -75,8 +76,8 @@ AVALANCHE_INLINE double next_regime(double was_active, double central, double le
 
 // ---------------------------------------------------------------- per cell, per row
 
-// With Velocity, also the velocity quotients u, v, as state_velocity_row computes them
-// (one division for both): the state rows are read once for both (case (a): the
+// With Velocity, also the velocity quotients u, v, with state_velocity_row's
+// expression (velocity_quotients): the state rows are read once for both (case (a): the
 // quotients' own pass read h, hu, hv from memory and the terms read them again).
 template <bool Metric, bool Velocity>
 AVALANCHE_SIMD_CLONES void terms_clone(const double* __restrict h, const double* __restrict hu,
@@ -97,9 +98,9 @@ AVALANCHE_SIMD_CLONES void terms_clone(const double* __restrict h, const double*
         still_x[i] = w * (hu[i] * hu[i] * mx <= rest2 * (d * d) ? 1.0 : 0.0);
         still_y[i] = w * (hv[i] * hv[i] * my <= rest2 * (d * d) ? 1.0 : 0.0);
         if constexpr (Velocity) {
-            const double inv = 1.0 / d;
-            u[i] = hu[i] * inv;
-            v[i] = hv[i] * inv;
+            const VelocityQuotients q = velocity_quotients(d, hu[i], hv[i]);
+            u[i] = q.u;
+            v[i] = q.v;
         }
     }
 }

@@ -118,6 +118,17 @@ struct PressureRowParams {
 void pressure_row(const PressureRowInput& in, const PressureRowOutput& out,
                   const PressureRowParams& p, int i0, int i1) noexcept;
 
+// The velocity quotients of one cell, with one division for both: state_velocity_row's
+// expression, which the regime terms' kernel shares (regime_terms_row) so that the two
+// give the same bits.
+struct VelocityQuotients {
+    double u, v;
+};
+[[nodiscard]] inline VelocityQuotients velocity_quotients(double h, double hu, double hv) noexcept {
+    const double inv = 1.0 / h;
+    return {hu * inv, hv * inv};
+}
+
 // The velocity quotients u = hu / h and v = hv / h of cells i0 .. i1 - 1 of a row,
 // for every cell (a dry cell's are inf or NaN; the kernels mask them): computed once
 // per cell for the pressure stage and the first-order fluxes, the same quotients

@@ -224,9 +224,6 @@ class Stepper {
         // strip starts at carried_for.
         int carried_for = 0;
         int vel_end = 0, p_end = 0, yfo_end = 0, xf_end = 0, xp_end = 0, yf_end = 0, fac_end = 0;
-        // The velocity rows the strip computes end here (regime_row_into computes them
-        // with the terms of their rows while vel_end is below).
-        int vel_until = 0;
         // The most rows beyond its own that a strip of this thread read of the state, and
         // computed regimes of (Stepper::state_rows_read_beyond, regime_rows_beyond).
         int rows_read_beyond = 0, regime_rows_beyond = 0;
@@ -257,7 +254,9 @@ class Stepper {
     [[nodiscard]] ActiveBox per_cell_box(const ActiveBox& b) const;
     // The new regime of row r, columns [ia, ib), into w.regime_row, from the state s
     // before the advection and the row's previous regime in regime_ (regime_row).
-    void regime_row_into(const State& s, double rest_speed, int r, int ia, int ib,
+    // The velocity quotients of the rows whose terms it computes come too, while they
+    // are the strip's next (w.vel_end) and below velocity_end (advect_strip, step 1).
+    void regime_row_into(const State& s, double rest_speed, int r, int ia, int ib, int velocity_end,
                          StripBuffers& w) const;
     // Stores w.regime_row (row r, columns [ia, ib)) into regime_ if the row is the
     // thread's, at once or, where another thread still reads its previous regime, after
