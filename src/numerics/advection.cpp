@@ -186,6 +186,11 @@ ActiveBox Stepper::per_cell_box(const ActiveBox& b) const {
             std::min(b.j1 + ng, grid_.ny + ng)};
 }
 
+int Stepper::first_new_terms_row(const StripBuffers& w, int r) const {
+    return std::max(w.terms_end,
+                    std::clamp(r - kRegimeTermsReach, -kGhostLayers, grid_.ny + kGhostLayers - 1));
+}
+
 void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, int ib,
                               int velocity_end, StripBuffers& w) const {
     const int ng = kGhostLayers, lo = -ng, hi = grid_.nx + ng - 1, top = grid_.ny + ng - 1;
@@ -206,7 +211,7 @@ void Stepper::regime_row_into(const State& s, double rest_speed, int r, int ia, 
     // per-cell stage's [ia, ib).
     const int c0 = std::max(ia - 2, lo), c1 = std::min(ib + 2, hi + 1);
     const bool metric = terrain_.has_metric;
-    w.terms_end = std::max(w.terms_end, clamped(r - kRegimeTermsReach));
+    w.terms_end = first_new_terms_row(w, r);
     for (int j = w.terms_end; j <= clamped(r + kRegimeTermsReach); ++j) {
         const bool velocity = j == w.vel_end && j < velocity_end;
         from_line_start(c0, c1, [&](int a, int e) {
@@ -365,9 +370,7 @@ void Stepper::advect_strip(State& s, double tau, const ActiveBox& b, int J, int 
     w.vel_end = std::max(w.vel_end, v0);
     const int p_first = std::max(q0, w.p_end);
     // The first row whose terms regime_row_into computes (if it runs: p_first < q1).
-    const int terms_first = regimes && p_first < q1
-                                ? std::max(w.terms_end, std::max(p_first - kRegimeTermsReach, -ng))
-                                : v1;
+    const int terms_first = regimes && p_first < q1 ? first_new_terms_row(w, p_first) : v1;
     velocity_rows_until(std::min(terms_first, v1));
 
     // The regime of each pressure row first (regime_row_into): its previous regime and

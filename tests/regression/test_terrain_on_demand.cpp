@@ -162,7 +162,9 @@ TEST(TerrainOnDemand, ACliffLeavesThePlaneAwayFromItWithExactlyZeroCurvature) {
             // curvature's 3 x 3 smoothing one more.
             const bool near_cliff = i >= kCliff - 3 && i <= kCliff + 2;
             if (near_cliff) {
-                if (i == kCliff - 1 || i == kCliff) EXPECT_NE(t.cxx(i, j), 0.0) << i << ", " << j;
+                if (i == kCliff - 1 || i == kCliff) {  // braces: EXPECT_NE is an if/else
+                    EXPECT_NE(t.cxx(i, j), 0.0) << i << ", " << j;
+                }
                 continue;
             }
             EXPECT_EQ(t.cxx(i, j), 0.0) << i << ", " << j;

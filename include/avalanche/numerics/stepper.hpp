@@ -258,6 +258,9 @@ class Stepper {
     // are the strip's next (w.vel_end) and below velocity_end (advect_strip, step 1).
     void regime_row_into(const State& s, double rest_speed, int r, int ia, int ib, int velocity_end,
                          StripBuffers& w) const;
+    // The first row whose regime terms regime_row_into(r) computes: the terms of rows
+    // r - 2 .. r + 2 (at the padding) that w's ring does not hold yet (w.terms_end).
+    [[nodiscard]] int first_new_terms_row(const StripBuffers& w, int r) const;
     // Stores w.regime_row (row r, columns [ia, ib)) into regime_ if the row is the
     // thread's, at once or, where another thread still reads its previous regime, after
     // every block is done (advect()).
