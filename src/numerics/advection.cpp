@@ -23,8 +23,11 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -56,7 +59,46 @@ void from_line_start(int ia, int ib, Run&& run) {
     if (ia < a) run(ia, a);
     if (a < ib) run(a, ib);
 }
+
+// The positions [first, S + end_beyond) of a strip's arrays, rows(S) rows, for strips of
+// S rows (StripBuffers::allocate says what each holds); count: the arrays that have them
+// (allocate checks it), so that strip_rows_for counts the bytes allocate gives.
+struct StripArrayRows {
+    int first, end_beyond, count;
+    [[nodiscard]] constexpr int rows(int S) const { return S + end_beyond - first; }
+};
+constexpr StripArrayRows kVelocityRows{0, 9, 2}, kPerCellRows{1, 7, 9}, kXFaceRows{3, 5, 4},
+    kYFaceRows{3, 6, 3}, kOutRows{4, 4, 3}, kYPredictorRows{3, 6, 3}, kXPredictorRows{1, 7, 6};
+
+// The bytes per column of a strip's arrays for strips of S rows.
+constexpr std::size_t strip_bytes_per_column(int S, bool predictors) {
+    std::size_t rows = 0;
+    for (const StripArrayRows& a : {kVelocityRows, kPerCellRows, kXFaceRows, kYFaceRows, kOutRows})
+        rows += static_cast<std::size_t>(a.count * a.rows(S));
+    if (predictors)
+        for (const StripArrayRows& a : {kYPredictorRows, kXPredictorRows})
+            rows += static_cast<std::size_t>(a.count * a.rows(S));
+    return rows * sizeof(double);
+}
 }  // namespace
+
+int Stepper::strip_rows_for(int columns, bool waf) {
+    int rows = kStripRows;
+    const auto bytes = [&](int S) {
+        return strip_bytes_per_column(S, waf) * static_cast<std::size_t>(columns);
+    };
+    while (rows > kFewestStripRows && bytes(rows) > kStripBufferBytes) rows /= 2;
+    return rows;
+}
+
+void Stepper::set_strip_rows(int rows) {
+    if (rows != 0 && (rows < kFewestStripRows || rows > kStripRows))
+        throw std::invalid_argument("Stepper::set_strip_rows: " + std::to_string(rows) +
+                                    " rows; expected 0 (by width) or " +
+                                    std::to_string(kFewestStripRows) + " to " +
+                                    std::to_string(kStripRows));
+    fixed_strip_rows_ = rows;
+}
 
 void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int column_zero, int strip_rows,
                                      bool predictors) {
@@ -78,16 +120,24 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int column_zero,
     // bound" is written by cover_columns. The first-order scheme has no predictors: their
     // nine arrays stay empty.
     const int S = strip_rows;
-    const auto make = [&](std::initializer_list<StripRows*> arrays, int first_row, int end_row) {
-        for (StripRows* a : arrays) a->allocate(stride, first_row, end_row);
+    const auto make = [&](std::initializer_list<StripRows*> arrays, StripArrayRows r) {
+        assert(arrays.size() == static_cast<std::size_t>(r.count));
+        for (StripRows* a : arrays) a->allocate(stride, r.first, r.first + r.rows(S));
     };
-    make({&su, &sv}, 0, S + 9);
-    make({&cx, &cy, &ax, &ay, &u_lo, &u_hi, &v_lo, &v_hi, &speed_hi}, 1, S + 7);
-    make({&fx_h, &fx_hu, &fx_hv, &factor}, 3, S + 5);
-    make({&fy_h, &fy_hu, &fy_hv}, 3, S + 6);
-    make({&out_h, &out_hu, &out_hv}, 4, S + 4);
-    make({&yfo_h, &yfo_qn, &yfo_qt}, 3, predictors ? S + 6 : 3);  // no rows: empty
-    make({&pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a}, 1, predictors ? S + 7 : 1);
+    make({&su, &sv}, kVelocityRows);
+    make({&cx, &cy, &ax, &ay, &u_lo, &u_hi, &v_lo, &v_hi, &speed_hi}, kPerCellRows);
+    make({&fx_h, &fx_hu, &fx_hv, &factor}, kXFaceRows);
+    make({&fy_h, &fy_hu, &fy_hv}, kYFaceRows);
+    make({&out_h, &out_hu, &out_hv}, kOutRows);
+    if (predictors) {  // else empty
+        make({&yfo_h, &yfo_qn, &yfo_qt}, kYPredictorRows);
+        make({&pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a}, kXPredictorRows);
+    } else {
+        for (StripRows* a : {&yfo_h, &yfo_qn, &yfo_qt})
+            a->allocate(stride, kYPredictorRows.first, kYPredictorRows.first);
+        for (StripRows* a : {&pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a})
+            a->allocate(stride, kXPredictorRows.first, kXPredictorRows.first);
+    }
     bounds_c0 = bounds_c1 = 0;
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);
@@ -724,6 +774,7 @@ void Stepper::advect(State& s, double tau) {
         after_sources_ = false;
     }
     const bool regimes = material_.earth_pressure != EarthPressureModel::isotropic;
+    const bool waf = numerics_.scheme == Scheme::waf;
 
     // The strips of the bands (make_bands) in row order, and the cells before each.
     struct Strip {
@@ -735,8 +786,13 @@ void Stepper::advect(State& s, double tau) {
     for (std::size_t q = 0; q < bands_.size(); ++q) {
         const ActiveBox& band = bands_[q];
         if (band.empty()) continue;
-        for (int j = band.j0; j < band.j1; j += kStripRows) {
-            strips.push_back({q, j, std::min(j + kStripRows, band.j1)});
+        // Bands' heights are multiples of kStripRows, so of every height chosen here: only
+        // the box's last strip is shorter.
+        const int rows = fixed_strip_rows_ > 0
+                             ? fixed_strip_rows_
+                             : strip_rows_for(band.i1 - band.i0 + 2 * kGhostLayers, waf);
+        for (int j = band.j0; j < band.j1; j += rows) {
+            strips.push_back({q, j, std::min(j + rows, band.j1)});
             cells_before.push_back(cells_before.back() + static_cast<std::size_t>(band.i1 - band.i0) *
                                                              static_cast<std::size_t>(strips.back().j1 - j));
         }
@@ -746,9 +802,10 @@ void Stepper::advect(State& s, double tau) {
     // cells (share_start): a whole avaKot run at 5 m on two threads spent 7.0-7.5 s in
     // its time loop with the first boundary at or beyond, 6.5-6.9 s now. Cutting the
     // strip at the share into two (shares even to a row) changed the run's maps in the
-    // last bits (not traced: a strip of a few rows at a segment's end, whose waiting
-    // rows and carried rows are sized for strips of kStripRows, is a suspect), so strips
-    // keep the rows make_bands gives them. A thread whose share is done takes half of
+    // last bits, most likely because a strip shorter than the rows a neighbouring segment reads
+    // (kStateRowsReadBeyond) at a segment's end holds back too few (strips of 3 rows
+    // change bench_equivalence's hashes the same way, 2026-12-07), so strips keep the
+    // rows the bands give them. A thread whose share is done takes half of
     // what another has left (StripClaims): the cores of this VM run at different speeds.
     // (Weighting the strips by their cost per cell, timed at the last advection, gained
     // nothing on the avaKot run.)

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -62,9 +63,10 @@ State dam_state(const Grid& g) {
 // over a 0.2 m layer, dry ground beyond x = 180 m, on a 10 deg plane, ten steps; with
 // all_to_first, every advection's strips given to the first thread at its start, which
 // waits until the others have claimed theirs (Stepper::set_all_strips_to_first_thread).
+// strip_rows: the strips' height (Stepper::set_strip_rows; 0: by the band's width).
 Result run(Scheme scheme, Boundary boundary, int threads, bool all_to_first = false,
            EarthPressureModel pressure = EarthPressureModel::savage_hutter,
-           Splitting splitting = Splitting::lsl) {
+           Splitting splitting = Splitting::lsl, int strip_rows = 0) {
     const analytic::ScopedThreads scoped(threads);
     const Grid g = analytic::box_grid(0.0, 220.0, 0.0, 130.0, 1.0);
     const TerrainFields t = analytic::plane_terrain(g, 10.0, 9.81);
@@ -77,6 +79,7 @@ Result run(Scheme scheme, Boundary boundary, int threads, bool all_to_first = fa
     n.splitting = splitting;
     Stepper stepper(g, t, m, n, 1e-4);
     stepper.set_all_strips_to_first_thread(all_to_first);
+    stepper.set_strip_rows(strip_rows);
     stepper.reset_active_box(s);
     int mismatches = 0;
     for (int step = 0; step < 10; ++step) {
@@ -126,6 +129,72 @@ TEST(AdvectionStrips, OneAndTwoThreadsGiveTheSameBits) {
 // edges, so that the west and east ghosts are read by the faces at every step (the
 // flow leaves through the open east edge, or is reflected by the wall). One thread
 // against two and three: the same bits, outflow and budget.
+// Wide bands get shorter strips (Stepper::strip_rows_for): the result must not depend
+// on the height, down to the fewest rows, whose segments' first and last strips hold
+// back every row a neighbouring segment reads. 130 rows in bands of 64: strips of 8 rows
+// divide the bands; strips of 11 and 13 leave shorter ones at the bands' ends. On one
+// thread each band's strips are a segment; on 2, 3 and 7 the threads' shares cut them
+// further, and with all_to_first the threads take strips from one another. This scene
+// does not show strips shorter than the rows a neighbouring segment reads (3 or 4 rows
+// pass here, as fewer rows held back do: SegmentsHoldBack... below); bench_equivalence's
+// valley does (3 rows changed its hashes), and Stepper refuses them (kFewestStripRows).
+TEST(AdvectionStrips, StripsOfEveryAllowedHeightGiveTheSameBits) {
+    for (const Scheme scheme : {Scheme::waf, Scheme::godunov}) {
+        for (const Boundary boundary : {Boundary::open, Boundary::wall}) {
+            const Result reference = run(scheme, boundary, 1);  // 226 columns: 16-row strips
+            for (const int rows : {Stepper::kFewestStripRows, 11, 13}) {
+                for (const int threads : {1, 2, 3, 7}) {
+                    for (const bool all_to_first : {false, true}) {
+                        if (all_to_first && threads == 1) continue;
+                        const Result r =
+                            run(scheme, boundary, threads, all_to_first,
+                                EarthPressureModel::savage_hutter, Splitting::lsl, rows);
+                        EXPECT_TRUE(same_bits(reference.state.h, r.state.h) &&
+                                    same_bits(reference.state.hu, r.state.hu) &&
+                                    same_bits(reference.state.hv, r.state.hv) &&
+                                    reference.regime == r.regime)
+                            << "scheme " << static_cast<int>(scheme) << " boundary "
+                            << static_cast<int>(boundary) << " rows " << rows << " threads "
+                            << threads << (all_to_first ? ", strips taken" : "");
+                        EXPECT_EQ(reference.outflow, r.outflow);
+                        EXPECT_EQ(r.kept_dt_mismatches, 0);
+                    }
+                }
+            }
+        }
+    }
+}
+
+// The strips' height by the band's width: case (a)'s 1000 columns keep the tallest
+// strips; bands some thousands of columns wide, whose 16-row buffers outgrew the caches
+// (docs/performance.md, "Strips as short as wide bands need"), get shorter ones, WAF's
+// (more buffers) before the first-order scheme's; never fewer rows than a segment's
+// ends hold back, which set_strip_rows refuses too.
+TEST(AdvectionStrips, WideBandsGetShorterStrips) {
+    EXPECT_EQ(Stepper::strip_rows_for(1006, true), Stepper::kStripRows);
+    EXPECT_EQ(Stepper::strip_rows_for(1006, false), Stepper::kStripRows);
+    EXPECT_EQ(Stepper::strip_rows_for(4006, true), Stepper::kStripRows / 2);
+    EXPECT_EQ(Stepper::strip_rows_for(4006, false), Stepper::kStripRows / 2);
+    int waf_short = 0, godunov_short = 0;  // the first width with short strips
+    for (int columns = 8; columns <= 100000; columns += 8) {
+        const int waf = Stepper::strip_rows_for(columns, true);
+        const int godunov = Stepper::strip_rows_for(columns, false);
+        ASSERT_GE(waf, Stepper::kFewestStripRows);
+        ASSERT_GE(godunov, waf);
+        if (waf < Stepper::kStripRows && waf_short == 0) waf_short = columns;
+        if (godunov < Stepper::kStripRows && godunov_short == 0) godunov_short = columns;
+        ASSERT_LE(Stepper::strip_rows_for(columns + 8, true), waf) << columns;
+    }
+    EXPECT_GT(godunov_short, waf_short);
+    EXPECT_EQ(Stepper::strip_rows_for(100000, true), Stepper::kFewestStripRows);
+    const Grid g = analytic::box_grid(0.0, 10.0, 0.0, 10.0, 1.0);
+    Stepper stepper(g, analytic::plane_terrain(g, 10.0, 9.81), MaterialParams{}, NumericsParams{},
+                    1e-4);
+    EXPECT_THROW(stepper.set_strip_rows(Stepper::kFewestStripRows - 1), std::invalid_argument);
+    EXPECT_THROW(stepper.set_strip_rows(Stepper::kStripRows + 1), std::invalid_argument);
+    EXPECT_NO_THROW(stepper.set_strip_rows(0));
+}
+
 TEST(AdvectionStrips, TallGridsFillTheirGhostColumnsOnTheThreadsToTheBit) {
     const Grid g = analytic::box_grid(0.0, 60.0, 0.0, 300.0, 1.0);
     ASSERT_GE(g.ny, Stepper::kMinRowsPerThreadedGhostFill);

@@ -117,6 +117,16 @@ class Stepper {
     // compare those runs to one thread's, to the bit.
     [[nodiscard]] std::uint64_t strip_steals() const { return strip_steals_; }
     void set_all_strips_to_first_thread(bool all) { all_strips_to_first_thread_ = all; }
+    // Rows per strip for a band whose per-cell stage spans `columns` (its width and the
+    // ghost layers on both sides): kStripRows, halved while the strip's buffers would
+    // exceed kStripBufferBytes, down to kFewestStripRows. Wide bands get short strips so
+    // that a strip's buffers stay in the caches (docs/performance.md, "Strips as short
+    // as wide bands need"). Results do not depend on it. The switch fixes every band's
+    // strips at `rows` (0: by width) for the tests that compare them to the bit.
+    [[nodiscard]] static int strip_rows_for(int columns, bool waf);
+    void set_strip_rows(int rows);
+    static constexpr int kStripRows = 16, kFewestStripRows = 8;
+    static constexpr std::size_t kStripBufferBytes = std::size_t{8} << 20;
     // The rows a segment's first and last strips hold back at their inner end until every
     // segment is done (advect()): updated state rows, which the neighbouring segment's
     // strips read; and new regimes of rows whose regimes that segment computes too, from
@@ -127,6 +137,10 @@ class Stepper {
     // test_advection_strips.cpp checks.
     static constexpr int kStateRowsReadBeyond = 5;
     static constexpr int kRegimeHeldRows = 4;
+    // A segment's first and last strips hold back their rows that the neighbouring
+    // segments read (advect()): a strip must hold them all. (Strips of 3 rows changed
+    // bench_equivalence's hashes.)
+    static_assert(kFewestStripRows >= kStateRowsReadBeyond && kFewestStripRows >= kRegimeHeldRows);
     [[nodiscard]] int state_rows_read_beyond() const { return state_rows_read_beyond_; }
     [[nodiscard]] int regime_rows_beyond() const { return regime_rows_beyond_; }
 
@@ -318,10 +332,7 @@ class Stepper {
     // step keep the bands of the material (docs/numerics.md, "Active region").
     bool films_settled_ = false;
     std::vector<StripBuffers> strips_;  // one per thread
-    // Rows per strip: the stage buffers of a strip (30 arrays of kStripRows to
-    // kStripRows + 8 rows for WAF, StripBuffers::allocate) stay in a core's cache for
-    // grids up to a few thousand cells wide.
-    static constexpr int kStripRows = 16;
+    int fixed_strip_rows_ = 0;          // set_strip_rows
     // state_rows_read_beyond(), regime_rows_beyond().
     int state_rows_read_beyond_ = 0, regime_rows_beyond_ = 0;
     double k_max_;          // largest earth-pressure coefficient
