@@ -786,8 +786,8 @@ void Stepper::advect(State& s, double tau) {
     for (std::size_t q = 0; q < bands_.size(); ++q) {
         const ActiveBox& band = bands_[q];
         if (band.empty()) continue;
-        // Bands' heights are multiples of kStripRows, so of every height chosen here: only
-        // the box's last strip is shorter.
+        // Bands' heights are multiples of kStripRows, so of every height strip_rows_for
+        // chooses: only the box's last strip is shorter.
         const int rows = fixed_strip_rows_ > 0
                              ? fixed_strip_rows_
                              : strip_rows_for(band.i1 - band.i0 + 2 * kGhostLayers, waf);
