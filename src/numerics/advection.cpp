@@ -120,24 +120,19 @@ void Stepper::StripBuffers::allocate(std::ptrdiff_t row_stride, int column_zero,
     // bound" is written by cover_columns. The first-order scheme has no predictors: their
     // nine arrays stay empty.
     const int S = strip_rows;
-    const auto make = [&](std::initializer_list<StripRows*> arrays, StripArrayRows r) {
+    // Without `used`, the arrays get no rows (empty).
+    const auto make = [&](std::initializer_list<StripRows*> arrays, StripArrayRows r,
+                          bool used = true) {
         assert(arrays.size() == static_cast<std::size_t>(r.count));
-        for (StripRows* a : arrays) a->allocate(stride, r.first, r.first + r.rows(S));
+        for (StripRows* a : arrays) a->allocate(stride, r.first, r.first + (used ? r.rows(S) : 0));
     };
     make({&su, &sv}, kVelocityRows);
     make({&cx, &cy, &ax, &ay, &u_lo, &u_hi, &v_lo, &v_hi, &speed_hi}, kPerCellRows);
     make({&fx_h, &fx_hu, &fx_hv, &factor}, kXFaceRows);
     make({&fy_h, &fy_hu, &fy_hv}, kYFaceRows);
     make({&out_h, &out_hu, &out_hv}, kOutRows);
-    if (predictors) {  // else empty
-        make({&yfo_h, &yfo_qn, &yfo_qt}, kYPredictorRows);
-        make({&pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a}, kXPredictorRows);
-    } else {
-        for (StripRows* a : {&yfo_h, &yfo_qn, &yfo_qt})
-            a->allocate(stride, kYPredictorRows.first, kYPredictorRows.first);
-        for (StripRows* a : {&pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a})
-            a->allocate(stride, kXPredictorRows.first, kXPredictorRows.first);
-    }
+    make({&yfo_h, &yfo_qn, &yfo_qt}, kYPredictorRows, predictors);
+    make({&pred_h, &pred_hu, &pred_hv, &pred_u, &pred_v, &pred_a}, kXPredictorRows, predictors);
     bounds_c0 = bounds_c1 = 0;
     for (auto* a : {&row_h, &row_hu, &row_hv, &row_u, &row_v, &row_a})
         a->assign(static_cast<std::size_t>(stride), 0.0);

@@ -123,12 +123,6 @@ TEST(AdvectionStrips, OneAndTwoThreadsGiveTheSameBits) {
     }
 }
 
-// A grid of enough rows for the ghost columns to be filled on the threads
-// (Stepper::kMinRowsPerThreadedGhostFill) and a wet box for the first step's energy
-// budget to be taken on them: 60 x 300 cells of the flow of dam_state, wet to both side
-// edges, so that the west and east ghosts are read by the faces at every step (the
-// flow leaves through the open east edge, or is reflected by the wall). One thread
-// against two and three: the same bits, outflow and budget.
 // Wide bands get shorter strips (Stepper::strip_rows_for): the result must not depend
 // on the height, down to the fewest rows, whose segments' first and last strips hold
 // back every row a neighbouring segment reads. 130 rows in bands of 64: strips of 8 rows
@@ -195,6 +189,12 @@ TEST(AdvectionStrips, WideBandsGetShorterStrips) {
     EXPECT_NO_THROW(stepper.set_strip_rows(0));
 }
 
+// A grid of enough rows for the ghost columns to be filled on the threads
+// (Stepper::kMinRowsPerThreadedGhostFill) and a wet box for the first step's energy
+// budget to be taken on them: 60 x 300 cells of the flow of dam_state, wet to both side
+// edges, so that the west and east ghosts are read by the faces at every step (the
+// flow leaves through the open east edge, or is reflected by the wall). One thread
+// against two and three: the same bits, outflow and budget.
 TEST(AdvectionStrips, TallGridsFillTheirGhostColumnsOnTheThreadsToTheBit) {
     const Grid g = analytic::box_grid(0.0, 60.0, 0.0, 300.0, 1.0);
     ASSERT_GE(g.ny, Stepper::kMinRowsPerThreadedGhostFill);
