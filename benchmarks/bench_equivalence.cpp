@@ -5,7 +5,10 @@
 // threshold). A change that must not change results prints the same lines before and
 // after: build this tool on both trees and diff the outputs.
 //
-//   bench_equivalence [--threads N]
+//   bench_equivalence [--threads N] [--strip-rows S]
+//
+// --strip-rows fixes every band's strips at S rows (1 to 16; Stepper::set_strip_rows),
+// which must not change a line either.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -52,10 +55,11 @@ struct Case {
     int steps;
 };
 
-void run(const Case& c) {
+void run(const Case& c, int strip_rows) {
     Scene s = c.build();
     c.tweak(s);
     Stepper st(s.grid, s.terrain, s.material, s.numerics, s.h_min);
+    st.set_strip_rows(strip_rows);
     State state = s.initial;
     st.reset_active_box(state);
     int steps = 0;
@@ -79,13 +83,19 @@ void run(const Case& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    int strip_rows = 0;  // by the bands' widths
+    for (int a = 1; a + 1 < argc; a += 2) {
+        if (std::strcmp(argv[a], "--threads") == 0) {
 #ifdef _OPENMP
-    if (argc == 3 && std::strcmp(argv[1], "--threads") == 0)
-        omp_set_num_threads(std::atoi(argv[2]));
-#else
-    (void)argc;
-    (void)argv;
+            omp_set_num_threads(std::atoi(argv[a + 1]));
 #endif
+        } else if (std::strcmp(argv[a], "--strip-rows") == 0) {
+            strip_rows = std::atoi(argv[a + 1]);
+        } else {
+            std::fprintf(stderr, "bench_equivalence: unknown option %s\n", argv[a]);
+            return 2;
+        }
+    }
     const auto none = [](Scene&) {};
     const auto wall_minmod = [](Scene& s) {
         s.numerics.boundary = Boundary::wall;
@@ -124,6 +134,6 @@ int main(int argc, char** argv) {
                          },
                          200});
     }
-    for (const Case& c : cases) run(c);
+    for (const Case& c : cases) run(c, strip_rows);
     return 0;
 }

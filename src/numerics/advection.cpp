@@ -92,10 +92,9 @@ int Stepper::strip_rows_for(int columns, bool waf) {
 }
 
 void Stepper::set_strip_rows(int rows) {
-    if (rows != 0 && (rows < kFewestStripRows || rows > kStripRows))
+    if (rows < 0 || rows > kStripRows)
         throw std::invalid_argument("Stepper::set_strip_rows: " + std::to_string(rows) +
-                                    " rows; expected 0 (by width) or " +
-                                    std::to_string(kFewestStripRows) + " to " +
+                                    " rows; expected 0 (by width) or 1 to " +
                                     std::to_string(kStripRows));
     fixed_strip_rows_ = rows;
 }
@@ -793,14 +792,31 @@ void Stepper::advect(State& s, double tau) {
         }
     }
     const int nstrips = static_cast<int>(strips.size());
+    // Each strip's band's last strip; and the strips reserved to the thread after each
+    // strip it claims (StripClaims): enough to span kRowsKnownAhead rows, so that a
+    // strip knows its segment's end wherever its rows must hold anything back for it
+    // (advect_strip). fewest_rows: the lowest strip but the box's last, which no strip
+    // follows.
+    std::vector<int> band_last(strips.size());
+    int fewest_rows = kStripRows;
+    for (int q = nstrips - 1; q >= 0; --q) {
+        const Strip& st = strips[static_cast<std::size_t>(q)];
+        const bool last_of_band =
+            q + 1 == nstrips || strips[static_cast<std::size_t>(q + 1)].band != st.band;
+        band_last[static_cast<std::size_t>(q)] =
+            last_of_band ? q : band_last[static_cast<std::size_t>(q + 1)];
+        if (q + 1 < nstrips) fewest_rows = std::min(fewest_rows, st.j1 - st.j0);
+    }
+    const int reserved = (kRowsKnownAhead + fewest_rows - 1) / fewest_rows;
     // Thread t of n starts on the strips from the strip boundary nearest to t / n of the
     // cells (share_start): a whole avaKot run at 5 m on two threads spent 7.0-7.5 s in
     // its time loop with the first boundary at or beyond, 6.5-6.9 s now. Cutting the
-    // strip at the share into two (shares even to a row) changed the run's maps in the
-    // last bits, most likely because a strip shorter than the rows a neighbouring segment reads
-    // (kStateRowsReadBeyond) at a segment's end holds back too few (strips of 3 rows
-    // change bench_equivalence's hashes the same way, 2026-12-07), so strips keep the
-    // rows the bands give them. A thread whose share is done takes half of
+    // strip at the share into two (shares even to a row) once changed the run's maps in
+    // the last bits: a segment's first or last strip then held back at most its own
+    // rows, too few where it was shorter than kStateRowsReadBeyond (strips of 3 rows
+    // changed bench_equivalence's hashes the same way). The rows held back now span
+    // strips (kRowsKnownAhead below), so such a cut would keep the bits; it has not been
+    // tried again. A thread whose share is done takes half of
     // what another has left (StripClaims): the cores of this VM run at different speeds.
     // (Weighting the strips by their cost per cell, timed at the last advection, gained
     // nothing on the avaKot run.)
@@ -831,7 +847,7 @@ void Stepper::advect(State& s, double tau) {
                 first[static_cast<std::size_t>(q)] =
                     all_strips_to_first_thread_ ? all_first : share_start(cells_before, q, n);
             }
-            claims.reset(first, all_strips_to_first_thread_);  // the others claim first
+            claims.reset(first, all_strips_to_first_thread_, reserved);  // the others claim first
         }
         StripBuffers& w = strips_[static_cast<std::size_t>(t)];
         // The columns the stages read of the bounds: the per-cell stage's, with a
@@ -845,20 +861,36 @@ void Stepper::advect(State& s, double tau) {
             const int k = c.strip;
             const Strip& st = strips[static_cast<std::size_t>(k)];
             const bool starts = c.starts || k == 0 || band_of(k - 1) != st.band;
-            const bool ends = c.ends || k + 1 == nstrips || band_of(k + 1) != st.band;
             if (starts) {
                 w.carried_for = std::numeric_limits<int>::min();  // a new segment
                 w.block_j0 = st.j0;
+                w.holds_first = k > 0;
             }
+            // The segment's last strip: its share's or its band's, whichever comes first,
+            // known where it is among the strips reserved after this one (StripClaims).
+            const int band_end = band_last[static_cast<std::size_t>(k)];
+            const int share_end =
+                c.share_last >= 0 ? c.share_last : std::numeric_limits<int>::max();
+            const int last = std::min(band_end, share_end);
+            const bool last_known = last <= k + reserved;
             // The segment's end as far as this strip's regime rows need it
-            // (keep_regime_row). A strip that does not end its segment is followed by the
-            // same thread's next strip (StripClaims); the regime rows it computes (two
-            // past its end at most) come within kRegimeHeldRows of that strip's end only
-            // if that strip is the box's last, shorter one, which ends the segment.
-            w.block_j1 = ends ? st.j1 : strips[static_cast<std::size_t>(k + 1)].j1;
-            // The rows the strips of the neighbouring segments read wait (advect_strip).
-            const int wait_first = starts && k > 0 ? kStateRowsReadBeyond : 0;
-            const int wait_last = ends && k + 1 < nstrips ? kStateRowsReadBeyond : 0;
+            // (keep_regime_row): where it is not known it is at or beyond the end of the
+            // reserved strips, kRowsKnownAhead rows or more past this strip's end, farther
+            // than the regime rows this strip computes (two past its end at most) and
+            // those held before an end (kRegimeHeldRows), and this strip's rows hold
+            // nothing back there.
+            const int end_strip = last_known ? last : k + reserved;
+            w.block_j1 = strips[static_cast<std::size_t>(end_strip)].j1;
+            // The rows the strips of the neighbouring segments read wait (advect_strip):
+            // the segment's first and last kStateRowsReadBeyond rows, which span several
+            // strips where strips are shorter.
+            const int rows = st.j1 - st.j0;
+            const int wait_first =
+                w.holds_first ? std::clamp(w.block_j0 + kStateRowsReadBeyond - st.j0, 0, rows) : 0;
+            const int wait_last =
+                last_known && last + 1 < nstrips
+                    ? std::clamp(st.j1 - (w.block_j1 - kStateRowsReadBeyond), 0, rows)
+                    : 0;
             // The band's columns; its stages' row ranges are the box's (advect_strip).
             const ActiveBox& band = bands_[st.band];
             advect_strip(s, tau, ActiveBox{band.i0, band.i1, b.j0, b.j1}, st.j0, st.j1, w,

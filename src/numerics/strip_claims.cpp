@@ -1,9 +1,12 @@
 #include "avalanche/numerics/strip_claims.hpp"
 
+#include <algorithm>
+
 namespace avalanche {
 
-void StripClaims::reset(std::span<const int> first, bool first_waits) {
+void StripClaims::reset(std::span<const int> first, bool first_waits, int reserved) {
     const std::lock_guard lock(mutex_);
+    reserved_ = std::max(reserved, 1);
     shares_.clear();
     for (std::size_t t = 0; t + 1 < first.size(); ++t) shares_.push_back({first[t], first[t + 1], true});
     has_claimed_.assign(first_waits ? shares_.size() : 0, 0);  // read only with first_waits
@@ -26,14 +29,14 @@ StripClaims::Claim StripClaims::next(int t) {
     Share& own = shares_[static_cast<std::size_t>(t)];
     if (own.next >= own.end) {
         // Steal: the upper half (rounded up) of the strips of the thread with the most
-        // left beyond the one it claims next, which stays reserved to it (see the
-        // header). Also a single such strip: its share of one strip recomputes about
-        // half a strip of stage rows and keeps all its rows back, but its owner ends a
-        // strip sooner while the thief would only wait.
+        // left beyond those reserved to it (the `reserved_` after its last claim, the
+        // first of which it claims next; see the header). Also a single such strip: its share of
+        // one strip recomputes about half a strip of stage rows and keeps all its rows back, but
+        // its owner ends a strip sooner while the thief would only wait.
         std::size_t victim = shares_.size();
         int most = 0;
         for (std::size_t v = 0; v < shares_.size(); ++v) {
-            const int beyond = shares_[v].end - shares_[v].next - 1;
+            const int beyond = shares_[v].end - shares_[v].next - reserved_;
             if (beyond > most) {
                 most = beyond;
                 victim = v;
@@ -50,6 +53,7 @@ StripClaims::Claim StripClaims::next(int t) {
     c.strip = own.next++;
     c.starts = own.fresh;
     c.ends = own.next == own.end;
+    if (own.end - 1 <= c.strip + reserved_) c.share_last = own.end - 1;
     own.fresh = false;
     return c;
 }

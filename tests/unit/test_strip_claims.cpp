@@ -72,6 +72,33 @@ TEST(StripClaims, OneStripBeyondTheNextIsTakenTheNextIsNot) {
     EXPECT_EQ(c.steals(), 1);
 }
 
+// With more strips reserved after each claim (short strips, whose segments hold back
+// rows over several of them), a taker leaves them all to the owner, and a claim names
+// its share's last strip once that is among them.
+TEST(StripClaims, ATakerLeavesEveryStripReservedAfterTheOwnersClaim) {
+    StripClaims c;
+    c.reset(std::vector<int>{0, 10, 10}, false, 3);  // every strip to thread 0
+    StripClaims::Claim k = c.next(0);                // 1 .. 3 reserved, 4 .. 9 beyond
+    EXPECT_TRUE((Seen{0, true, false} == k));
+    EXPECT_EQ(k.share_last, -1);  // 4 .. 9, beyond the reserved strips, may still be taken
+    k = c.next(1);                // takes 7 .. 9, half of the six beyond
+    EXPECT_TRUE((Seen{7, true, false} == k));
+    EXPECT_EQ(k.share_last, 9);  // 8 and 9 are reserved to it now
+    EXPECT_EQ(c.steals(), 1);
+    for (int strip = 1; strip <= 6; ++strip) {
+        k = c.next(0);
+        EXPECT_TRUE((Seen{strip, false, strip == 6} == k)) << strip;
+        // Thread 0's share ends at 6: named from the claim of 3 on (4 .. 6 reserved).
+        EXPECT_EQ(k.share_last, strip >= 3 ? 6 : -1) << strip;
+    }
+    // Thread 1 claimed 7, so 8 .. 10 are reserved (9 is its last): nothing to take.
+    EXPECT_EQ(c.next(0).strip, -1);
+    EXPECT_TRUE((Seen{8, false, false} == c.next(1)));
+    EXPECT_TRUE((Seen{9, false, true} == c.next(1)));
+    EXPECT_EQ(c.next(1).strip, -1);
+    EXPECT_EQ(c.steals(), 1);
+}
+
 // With first_waits (the tests' all-strips-to-the-first-thread runs), thread 0's first
 // claim waits for every other thread's: here thread 1 takes half of thread 0's share
 // before thread 0 claims a strip, however the two are scheduled.
@@ -103,18 +130,22 @@ TEST(StripClaims, TheFirstThreadWaitsForTheOthersFirstClaims) {
 // Threads claiming at once: every strip is claimed exactly once; each thread's claims
 // come as runs of consecutive strips, each run opened by a claim that starts it and
 // closed by one that ends it, and a claim that does not end its run is followed by the
-// same thread's claim of the next strip (the guarantee the advection's segments need).
+// same thread's claim of the next strip; a claim's share_last, where it names one, is
+// its run's last strip, and where it does not the run goes on at least to the last
+// strip reserved after it (the guarantees the advection's segments need). With 1 and 3
+// strips reserved after each claim.
 TEST(StripClaims, ConcurrentClaimsCoverEveryStripOnceInRuns) {
     constexpr int kStrips = 200, kThreads = 4;
     int taken_from_the_first = 0;
     for (int round = 0; round < 20; ++round) {
+        const int reserved = round % 4 < 2 ? 1 : 3;
         StripClaims c;
         // Even rounds: every strip to thread 0, which waits for the others' first claims
         // (so each of them takes a share from it first, however the threads are
         // scheduled); odd rounds: even shares, thread 0 the slowest.
         std::vector<int> first{0, kStrips, kStrips, kStrips, kStrips};
         if (round % 2) first = {0, 50, 100, 150, kStrips};
-        c.reset(first, round % 2 == 0);
+        c.reset(first, round % 2 == 0, reserved);
         std::vector<std::vector<StripClaims::Claim>> got(kThreads);
         std::vector<std::thread> team;
         for (int t = 0; t < kThreads; ++t)
@@ -143,6 +174,20 @@ TEST(StripClaims, ConcurrentClaimsCoverEveryStripOnceInRuns) {
                 open = !k.ends;
             }
             EXPECT_FALSE(open) << "round " << round;  // every run ended
+            // Each claim's share_last against the run it belongs to.
+            for (std::size_t q = 0; q < claims.size();) {
+                std::size_t e = q;
+                while (!claims[e].ends) ++e;  // the run's last claim
+                for (std::size_t p = q; p <= e; ++p) {
+                    const StripClaims::Claim& k = claims[p];
+                    if (k.share_last >= 0) {
+                        EXPECT_EQ(k.share_last, claims[e].strip) << "round " << round;
+                    } else {
+                        EXPECT_GE(claims[e].strip, k.strip + reserved) << "round " << round;
+                    }
+                }
+                q = e + 1;
+            }
         }
         EXPECT_TRUE(std::all_of(count.begin(), count.end(), [](int n) { return n == 1; }))
             << "round " << round;

@@ -121,8 +121,10 @@ class Stepper {
     // ghost layers on both sides): kStripRows, halved while the strip's buffers would
     // exceed kStripBufferBytes, down to kFewestStripRows. Wide bands get short strips so
     // that a strip's buffers stay in the caches (docs/performance.md, "Strips as short
-    // as wide bands need"). Results do not depend on it. The switch fixes every band's
-    // strips at `rows` (0: by width) for the tests that compare them to the bit.
+    // as wide bands need"); 4-row strips gained nothing measurable over 8 on bands 3000
+    // to 6000 columns wide ("Strips of any height"). Results do not depend on it. The
+    // switch fixes every band's strips at `rows` (1 to kStripRows; 0: by width) for the
+    // tests that compare them to the bit.
     [[nodiscard]] static int strip_rows_for(int columns, bool waf);
     void set_strip_rows(int rows);
     static constexpr int kStripRows = 16, kFewestStripRows = 8;
@@ -137,10 +139,16 @@ class Stepper {
     // test_advection_strips.cpp checks.
     static constexpr int kStateRowsReadBeyond = 5;
     static constexpr int kRegimeHeldRows = 4;
-    // A segment's first and last strips hold back their rows that the neighbouring
-    // segments read (advect()): a strip must hold them all. (Strips of 3 rows changed
+    // How far ahead, in rows, a thread must know where its segment ends (advect()): the
+    // strips reserved to it after each one it claims (StripClaims) span at least this
+    // many rows. A strip then knows the end wherever its own rows are among the
+    // segment's last kStateRowsReadBeyond, which wait, or a regime row it computes (two
+    // past its end at most) is among the last kRegimeHeldRows: 5 and 2 + 4 + 1 = 7 rows,
+    // fewer than these 9. So a strip of any height holds back what it must, the held
+    // rows spanning several strips where strips are short. (Before, one strip was
+    // reserved and had to hold them all: strips fixed at 3 rows changed
     // bench_equivalence's hashes.)
-    static_assert(kFewestStripRows >= kStateRowsReadBeyond && kFewestStripRows >= kRegimeHeldRows);
+    static constexpr int kRowsKnownAhead = kStateRowsReadBeyond + kRegimeHeldRows;
     [[nodiscard]] int state_rows_read_beyond() const { return state_rows_read_beyond_; }
     [[nodiscard]] int regime_rows_beyond() const { return regime_rows_beyond_; }
 
@@ -225,7 +233,11 @@ class Stepper {
         // The update rows [block_j0, block_j1) of the segment the thread works on (its
         // strips of one band, advect()): which new regime rows are the segment's to
         // store, and which must wait (keep_regime_row).
+        // block_j1 is a lower bound while the segment's end is not yet fixed (advect()).
+        // holds_first: the segment's first kStateRowsReadBeyond rows wait (it does not
+        // start at the box's first strip).
         int block_j0 = 0, block_j1 = 0;
+        bool holds_first = false;
         // New regime rows that must wait until every segment is done: row held_rows[q],
         // columns [held_cols[q].first, held_cols[q].second), at held_regime[q * stride]
         // (column 0 at ng).

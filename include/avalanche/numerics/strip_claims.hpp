@@ -11,10 +11,11 @@
 // A share's strips form segments (advection.cpp): the first strip of a segment computes
 // its stage rows afresh, and the first and last strips of a segment keep back the
 // updated rows another segment reads (five at the inner end) until every segment is
-// done. So a thread must know, when it claims a strip, whether the strip ends its
-// share. The strip after the one a thread claims is therefore reserved to it: a thief
-// takes only the strips beyond, so a claimed strip that does not end the share is
-// followed by the same thread's next strip, whatever is stolen later.
+// done. So a thread must know, when it claims a strip, whether its share ends within
+// those rows. The strips after the one a thread claims (one, or more where strips are
+// shorter than the rows held back: reset's `reserved`) are therefore reserved to it: a
+// thief takes only the strips beyond, so a share that does not end among them goes on
+// at least to the last of them, whatever is stolen later.
 //
 // For the tests that compare shares taken from another thread with one thread's run
 // (Stepper::set_all_strips_to_first_thread), reset() can make thread 0 wait until every
@@ -34,12 +35,17 @@ class StripClaims {
         int strip = -1;       // -1: nothing left anywhere
         bool starts = false;  // the first strip of a share (taken at the start or stolen)
         bool ends = false;    // the last strip of its share: no later strip follows it
+        // The share's last strip where it is among the strips reserved after this one
+        // (or is this one): then no thief can change it any more. -1 where it is not yet
+        // fixed: it is then at least the last of the reserved strips.
+        int share_last = -1;
     };
 
     // Thread t's share is [first[t], first[t + 1]); first.back() is the number of strips.
     // With first_waits, thread 0's first next() returns only once every other thread
-    // has called next() (each thread must call it, as the advection's do).
-    void reset(std::span<const int> first, bool first_waits = false);
+    // has called next() (each thread must call it, as the advection's do). `reserved`
+    // (at least 1) strips after each claimed one stay the claimer's.
+    void reset(std::span<const int> first, bool first_waits = false, int reserved = 1);
     // The next strip for thread t (safe to call from every thread at once).
     [[nodiscard]] Claim next(int t);
     // Shares taken from another thread since the last reset.
@@ -58,6 +64,7 @@ class StripClaims {
     std::vector<char> has_claimed_;
     int claimed_ = 0;
     bool first_waits_ = false;
+    int reserved_ = 1;
     int steals_ = 0;
 };
 
