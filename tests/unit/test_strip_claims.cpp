@@ -91,7 +91,7 @@ TEST(StripClaims, ATakerLeavesEveryStripReservedAfterTheOwnersClaim) {
         // Thread 0's share ends at 6: named from the claim of 3 on (4 .. 6 reserved).
         EXPECT_EQ(k.share_last, strip >= 3 ? 6 : -1) << strip;
     }
-    // Thread 1 claimed 7, so 8 .. 10 are reserved (9 is its last): nothing to take.
+    // Thread 1 claimed 7, so 8 and 9, all it has left, are reserved: nothing to take.
     EXPECT_EQ(c.next(0).strip, -1);
     EXPECT_TRUE((Seen{8, false, false} == c.next(1)));
     EXPECT_TRUE((Seen{9, false, true} == c.next(1)));
