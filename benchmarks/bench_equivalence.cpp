@@ -84,7 +84,11 @@ void run(const Case& c, int strip_rows) {
 
 int main(int argc, char** argv) {
     int strip_rows = 0;  // by the bands' widths
-    for (int a = 1; a + 1 < argc; a += 2) {
+    for (int a = 1; a < argc; a += 2) {
+        if (a + 1 == argc) {
+            std::fprintf(stderr, "bench_equivalence: option %s needs a value\n", argv[a]);
+            return 2;
+        }
         if (std::strcmp(argv[a], "--threads") == 0) {
 #ifdef _OPENMP
             omp_set_num_threads(std::atoi(argv[a + 1]));

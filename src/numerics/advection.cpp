@@ -864,7 +864,6 @@ void Stepper::advect(State& s, double tau) {
             if (starts) {
                 w.carried_for = std::numeric_limits<int>::min();  // a new segment
                 w.block_j0 = st.j0;
-                w.holds_first = k > 0;
             }
             // The segment's last strip: its share's or its band's, whichever comes first,
             // known where it is among the strips reserved after this one (StripClaims).
@@ -884,9 +883,11 @@ void Stepper::advect(State& s, double tau) {
             // The rows the strips of the neighbouring segments read wait (advect_strip):
             // the segment's first and last kStateRowsReadBeyond rows, which span several
             // strips where strips are shorter.
+            // (A segment that starts at the first strip has no neighbour before it.)
             const int rows = st.j1 - st.j0;
+            const bool holds_first = w.block_j0 != strips.front().j0;
             const int wait_first =
-                w.holds_first ? std::clamp(w.block_j0 + kStateRowsReadBeyond - st.j0, 0, rows) : 0;
+                holds_first ? std::clamp(w.block_j0 + kStateRowsReadBeyond - st.j0, 0, rows) : 0;
             const int wait_last =
                 last_known && last + 1 < nstrips
                     ? std::clamp(st.j1 - (w.block_j1 - kStateRowsReadBeyond), 0, rows)

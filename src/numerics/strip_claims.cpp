@@ -30,9 +30,9 @@ StripClaims::Claim StripClaims::next(int t) {
     if (own.next >= own.end) {
         // Steal: the upper half (rounded up) of the strips of the thread with the most
         // left beyond those reserved to it (the `reserved_` after its last claim, the
-        // first of which it claims next; see the header). Also a single such strip: its share of
-        // one strip recomputes about half a strip of stage rows and keeps all its rows back, but
-        // its owner ends a strip sooner while the thief would only wait.
+        // first of which it claims next; see the header). Also a single such strip: its
+        // share of one strip recomputes about half a strip of stage rows and keeps all its
+        // rows back, but its owner ends a strip sooner while the thief would only wait.
         std::size_t victim = shares_.size();
         int most = 0;
         for (std::size_t v = 0; v < shares_.size(); ++v) {

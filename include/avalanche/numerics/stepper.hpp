@@ -234,10 +234,7 @@ class Stepper {
         // strips of one band, advect()): which new regime rows are the segment's to
         // store, and which must wait (keep_regime_row).
         // block_j1 is a lower bound while the segment's end is not yet fixed (advect()).
-        // holds_first: the segment's first kStateRowsReadBeyond rows wait (it does not
-        // start at the box's first strip).
         int block_j0 = 0, block_j1 = 0;
-        bool holds_first = false;
         // New regime rows that must wait until every segment is done: row held_rows[q],
         // columns [held_cols[q].first, held_cols[q].second), at held_regime[q * stride]
         // (column 0 at ng).
