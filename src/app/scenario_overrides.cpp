@@ -10,6 +10,7 @@
 
 #include "avalanche/app/quality_preset.hpp"
 #include "avalanche/core/error.hpp"
+#include "avalanche/gis/geo_grid.hpp"
 #include "avalanche/io/enum_names.hpp"
 #include "avalanche/io/scenario_file.hpp"
 
@@ -43,9 +44,13 @@ void apply_release_overrides(Scenario& s, const ScenarioOverrides& o) {
         }
     }
     auto* polygons = std::get_if<PolygonReleaseSpec>(&s.release);
+    if (o.thickness && o.thickness_field)
+        throw ConfigError("--thickness", "give either --thickness or --thickness-field, not both");
     if (o.thickness) {
         if (polygons) {
+            // The flag wins over the file's thickness field, as every flag over its key.
             polygons->thickness = *o.thickness;
+            polygons->thickness_field.clear();
         } else if (auto* shape = std::get_if<ReleaseShape>(&s.release)) {
             if (auto* p = std::get_if<ParaboloidRelease>(shape))
                 p->thickness = *o.thickness;
@@ -61,7 +66,10 @@ void apply_release_overrides(Scenario& s, const ScenarioOverrides& o) {
     if ((o.thickness_field || o.volume) && !polygons)
         throw ConfigError(o.volume ? "--volume" : "--thickness-field",
                           "applies to a polygon release only (--release FILE.gpkg)");
-    if (o.thickness_field) polygons->thickness_field = *o.thickness_field;
+    if (o.thickness_field) {
+        polygons->thickness_field = *o.thickness_field;
+        polygons->thickness.reset();  // the flag wins over the file's thickness
+    }
     if (o.volume) polygons->volume = *o.volume;
 }
 
@@ -235,6 +243,8 @@ Scenario assemble_scenario(const std::optional<std::string>& scenario_file,
     apply_overrides(s, o);
     try {
         validate(s);
+        if (const auto* dem = std::get_if<DemTerrainSpec>(&s.terrain); dem && !dem->crs.empty())
+            gis::check_grid_crs(dem->crs, "terrain.crs");
     } catch (const ConfigError& e) {
         const std::string message = e.what();
         const auto colon = message.find(": ");

@@ -54,6 +54,19 @@ std::string describe(const std::vector<detail::DemTile>& tiles, const detail::Gr
     return s.str();
 }
 
+// The datasets made on the way to the warp (CRS views, Float64 views, mosaics), each
+// reading those made before it: closed newest first. (A vector closes its elements
+// oldest first; a mosaic then flushed into views already closed and crashed.)
+struct MadeDatasets {
+    std::vector<detail::DatasetPtr> list;
+    MadeDatasets() = default;
+    MadeDatasets(const MadeDatasets&) = delete;
+    MadeDatasets& operator=(const MadeDatasets&) = delete;
+    ~MadeDatasets() {
+        while (!list.empty()) list.pop_back();
+    }
+};
+
 // A tile without a CRS in its file gets the user's CRS through a VRT view, so that
 // the warper knows it too (GDALWarp reads the CRS from the dataset).
 GDALDataset* with_crs(detail::DemTile& t, std::vector<detail::DatasetPtr>& owned,
@@ -66,6 +79,36 @@ GDALDataset* with_crs(detail::DemTile& t, std::vector<detail::DatasetPtr>& owned
     view->SetSpatialRef(&t.srs);
     owned.push_back(std::move(view));
     return owned.back().get();
+}
+
+// Whether the tiles' first bands share a data type, as GDALBuildVRT requires.
+bool same_data_type(const std::vector<GDALDatasetH>& members) {
+    const auto type_of = [](GDALDatasetH h) {
+        return GDALGetRasterDataType(GDALGetRasterBand(h, 1));
+    };
+    return std::all_of(members.begin(), members.end(),
+                       [&](GDALDatasetH h) { return type_of(h) == type_of(members.front()); });
+}
+
+// Replaces each tile by a Float64 view of it (a VRT: nothing is copied), so that tiles
+// stored in different types (Int16 beside Float32, say) mosaic together; every
+// elevation of those types is exact in a double.
+void as_float64(std::vector<GDALDatasetH>& members, const std::vector<std::string>& names,
+                std::vector<detail::DatasetPtr>& owned, const detail::GdalErrorScope& errors) {
+    const char* args[] = {"-of", "VRT", "-ot", "Float64", nullptr};
+    GDALTranslateOptions* options = GDALTranslateOptionsNew(const_cast<char**>(args), nullptr);
+    for (std::size_t k = 0; k < members.size(); ++k) {
+        int usage_error = 0;
+        detail::DatasetPtr view(
+            GDALDataset::FromHandle(GDALTranslate("", members[k], options, &usage_error)));
+        if (!view || usage_error) {
+            GDALTranslateOptionsFree(options);
+            throw InputError(names[k], "cannot read it as Float64" + errors.reason());
+        }
+        members[k] = GDALDataset::ToHandle(view.get());
+        owned.push_back(std::move(view));
+    }
+    GDALTranslateOptionsFree(options);
 }
 
 // Tiles sharing a CRS are mosaicked first (GDALBuildVRT), so that the warper
@@ -96,14 +139,20 @@ std::vector<GDALDataset*> mosaic_by_crs(std::vector<detail::DemTile>& tiles,
             sources.push_back(GDALDataset::FromHandle(members.front()));
             continue;
         }
+        if (!same_data_type(members)) as_float64(members, names, owned, errors);
         const char* args[] = {"-resolution", "highest", nullptr};
         GDALBuildVRTOptions* options = GDALBuildVRTOptionsNew(const_cast<char**>(args), nullptr);
         int usage_error = 0;
+        const std::size_t warnings_before = errors.warnings().size();
         detail::DatasetPtr vrt(GDALDataset::FromHandle(GDALBuildVRT(
             "", static_cast<int>(members.size()), members.data(), nullptr, options, &usage_error)));
         GDALBuildVRTOptionsFree(options);
         if (!vrt || usage_error)
             throw InputError(join(names), "cannot mosaic these tiles" + errors.reason());
+        // GDALBuildVRT leaves out, with a mere warning, a tile it cannot take.
+        for (std::size_t k = warnings_before; k < errors.warnings().size(); ++k)
+            if (detail::lower(errors.warnings()[k]).find("skipping") != std::string::npos)
+                throw InputError(join(names), "cannot mosaic these tiles: " + errors.warnings()[k]);
         owned.push_back(std::move(vrt));
         sources.push_back(owned.back().get());
     }
@@ -125,8 +174,8 @@ Dem load_dem(const std::vector<std::string>& paths, const DemOptions& opts) {
     for (auto& tile : tiles) detail::scan_dem_tile(tile);  // only once the grid fits
     if (plan.same_as_source) resampling = "near";  // exact copy of the source cells
 
-    std::vector<detail::DatasetPtr> owned;
-    const std::vector<GDALDataset*> sources = mosaic_by_crs(tiles, owned, errors);
+    MadeDatasets made;
+    const std::vector<GDALDataset*> sources = mosaic_by_crs(tiles, made.list, errors);
     detail::DatasetPtr warped =
         detail::warp_onto_grid(sources, plan.geo, resampling, join(paths), errors, opts.threads);
 

@@ -97,16 +97,17 @@ double metric_spacing(const DemTile& t, const OGRSpatialReference& target) {
     return round_cell_size(std::max(sx, sy));
 }
 
-void require_metric_projected(const OGRSpatialReference& srs, const std::string& what) {
+void require_metric_projected(const OGRSpatialReference& srs, const std::string& what,
+                              const std::string& key) {
     if (!srs.IsProjected())
         throw ConfigError(
-            "crs", what + " " + label_of(srs) + " is not a projected CRS; the solver needs metres");
+            key, what + " " + label_of(srs) + " is not a projected CRS; the solver needs metres");
     const char* unit = nullptr;
     const double to_metre = srs.GetLinearUnits(&unit);
     if (std::abs(to_metre - 1.0) > 1e-12)
-        throw ConfigError("crs", what + " " + label_of(srs) + " uses " +
-                                     (unit != nullptr ? unit : "?") +
-                                     "; give a CRS in metres (e.g. the UTM zone)");
+        throw ConfigError(key, what + " " + label_of(srs) + " uses " +
+                                   (unit != nullptr ? unit : "?") +
+                                   "; give a CRS in metres (e.g. the UTM zone)");
 }
 
 bool is_north_up(const std::array<double, 6>& gt) {
@@ -137,6 +138,18 @@ DemTile open_dem_tile(const std::string& path, const OGRSpatialReference& user_c
                          "has no coordinate reference system; give the DEM's CRS "
                          "(option crs, e.g. EPSG:31287)");
     }
+    // Elevations stored scaled (integers in dm or cm, with a scale and offset in the
+    // band's metadata): the warper and the readers take the stored values, so the
+    // terrain would be ten or a hundred times too tall. Refused rather than unscaled
+    // here, as the nodata value would have to be unscaled with them.
+    GDALRasterBand* band = tile.ds->GetRasterBand(1);
+    int has_scale = 0, has_offset = 0;
+    const double scale = band->GetScale(&has_scale), offset = band->GetOffset(&has_offset);
+    if ((has_scale && scale != 1.0) || (has_offset && offset != 0.0))
+        throw InputError(path, "band 1 stores scaled elevations (scale " + std::to_string(scale) +
+                                   ", offset " + std::to_string(offset) +
+                                   "); expected elevations in m: convert it first, e.g. "
+                                   "gdal_translate -unscale -ot Float32 in.tif out.tif");
     return tile;
 }
 
@@ -179,7 +192,8 @@ GridPlan plan_dem_grid(const std::vector<DemTile>& tiles, const OGRSpatialRefere
         target = first.srs;
         plan.crs_reason = "the DEM's own CRS";
     }
-    require_metric_projected(target, user_crs.IsEmpty() ? "the DEM CRS" : "the requested CRS");
+    require_metric_projected(target, user_crs.IsEmpty() ? "the DEM CRS" : "the requested CRS",
+                             "crs");
     target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
 
     // Cell size and anchor: keep the first tile's cells when it is already in the target
@@ -240,3 +254,11 @@ GridPlan plan_dem_grid(const std::vector<DemTile>& tiles, const OGRSpatialRefere
 }
 
 }  // namespace avalanche::gis::detail
+
+namespace avalanche::gis {
+
+void check_grid_crs(const std::string& text, const std::string& key) {
+    detail::require_metric_projected(detail::srs_from_text(text, key), "the requested CRS", key);
+}
+
+}  // namespace avalanche::gis

@@ -70,6 +70,17 @@ DatasetPtr open_vector(const std::string& path, const GdalErrorScope& errors) {
     return ds;
 }
 
+std::vector<OGRLayer*> geometry_layers(GDALDataset& ds) {
+    std::vector<OGRLayer*> layers;
+    for (OGRLayer* layer : ds.GetLayers())
+        if (layer->GetLayerDefn()->GetGeomFieldCount() > 0) layers.push_back(layer);
+    return layers;
+}
+
+std::unique_ptr<OGRGeometry> linear_copy(const OGRGeometry& g) {
+    return std::unique_ptr<OGRGeometry>(g.hasCurveGeometry() ? g.getLinearGeometry() : g.clone());
+}
+
 DatasetPtr create_mem_raster(int width, int height, int bands, GDALDataType type) {
     ensure_gdal_registered();
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");

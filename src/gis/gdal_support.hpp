@@ -45,6 +45,16 @@ using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 DatasetPtr open_raster(const std::string& path, const GdalErrorScope& errors);
 DatasetPtr open_vector(const std::string& path, const GdalErrorScope& errors);
 
+// The dataset's layers that have a geometry column. Attribute-only tables hold nothing to
+// read: QGIS, for one, keeps the styles saved in a GeoPackage in such a table
+// ('layer_styles').
+std::vector<OGRLayer*> geometry_layers(GDALDataset& ds);
+
+// A copy of the geometry with its curves (CurvePolygon, MultiSurface, CircularString
+// rings) approximated by line segments, as GDALRasterizeGeometries burns only linear
+// geometries; a linear geometry is copied unchanged.
+std::unique_ptr<OGRGeometry> linear_copy(const OGRGeometry& g);
+
 // An in-memory raster (MEM driver) with the given size, type and band count.
 DatasetPtr create_mem_raster(int width, int height, int bands, GDALDataType type);
 

@@ -43,7 +43,7 @@ ObservedFootprint rasterize_observed_polygons(const std::string& path, const Geo
 
     std::vector<std::unique_ptr<OGRGeometry>> polygons;  // in the grid CRS
     bool reprojected = false, assumed_crs = false;
-    for (OGRLayer* layer : ds->GetLayers()) {
+    for (OGRLayer* layer : detail::geometry_layers(*ds)) {
         const OGRSpatialReference* layer_srs = layer->GetSpatialRef();
         detail::TransformPtr to_grid;
         if (layer_srs == nullptr || layer_srs->IsEmpty()) {
@@ -66,7 +66,7 @@ ObservedFootprint rasterize_observed_polygons(const std::string& path, const Geo
                                            " has an invalid geometry (self-intersecting or "
                                            "badly formed rings); repair it, e.g. with QGIS "
                                            "'Fix geometries'");
-            std::unique_ptr<OGRGeometry> p(geometry->clone());
+            std::unique_ptr<OGRGeometry> p = detail::linear_copy(*geometry);
             if (to_grid && p->transform(to_grid.get()) != OGRERR_NONE)
                 throw InputError(path, label + " cannot be reprojected to " + geo.crs_label());
             OGREnvelope e;

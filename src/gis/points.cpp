@@ -54,6 +54,9 @@ std::vector<RawPoint> read_csv(std::istream& in, const std::string& path) {
     std::vector<RawPoint> points;
     while (std::getline(in, line)) {
         ++number;
+        // The byte-order mark spreadsheets put before "CSV UTF-8" text: invisible in a
+        // message, it would make the header's first column unknown.
+        if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
         const std::string t = trim(line);
         if (t.empty() || t.front() == '#') continue;
         const auto cells = split_csv(line);
@@ -109,7 +112,7 @@ std::vector<RawPoint> read_ogr(const std::string& path, const OGRSpatialReferenc
                                const detail::GdalErrorScope& errors) {
     detail::DatasetPtr ds = detail::open_vector(path, errors);
     std::vector<RawPoint> points;
-    for (OGRLayer* layer : ds->GetLayers()) {
+    for (OGRLayer* layer : detail::geometry_layers(*ds)) {
         const OGRSpatialReference* srs = layer->GetSpatialRef();
         detail::TransformPtr ct;
         if (srs != nullptr && !srs->IsEmpty() && !grid_srs.IsEmpty() && !srs->IsSame(&grid_srs))

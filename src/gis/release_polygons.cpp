@@ -105,7 +105,7 @@ std::vector<Polygon> read_polygons(const std::string& path, const GeoGrid& geo,
     const Grid& g = geo.grid;
     std::vector<Polygon> polygons;
     std::string empty_layers;
-    for (OGRLayer* layer : ds->GetLayers()) {
+    for (OGRLayer* layer : detail::geometry_layers(*ds)) {
         OGRFeatureDefn* defn = layer->GetLayerDefn();
         if (layer->GetFeatureCount(TRUE) == 0) {
             empty_layers +=
@@ -156,7 +156,7 @@ std::vector<Polygon> read_polygons(const std::string& path, const GeoGrid& geo,
             }
             p.thickness = opts.thickness ? *opts.thickness
                                          : thickness_of(*feature, field, field_name, p.label, path);
-            p.geometry.reset(geometry->clone());
+            p.geometry = detail::linear_copy(*geometry);
             if (to_grid && p.geometry->transform(to_grid.get()) != OGRERR_NONE)
                 throw InputError(path, p.label + " cannot be reprojected to " + geo.crs_label());
             OGREnvelope e;

@@ -40,6 +40,10 @@ void validate_terrain(const TerrainSpec& terrain, double cell_size) {
 void validate_release(const ReleaseSpec& release, bool chute) {
     if (const auto* shape = std::get_if<ReleaseShape>(&release)) {
         validate(*shape);
+        if (!chute)
+            throw ConfigError("release.shape",
+                              "a DEM terrain takes release polygons or a "
+                              "thickness raster, not an analytic shape");
         return;
     }
     if (const auto* poly = std::get_if<PolygonReleaseSpec>(&release)) {
@@ -49,6 +53,9 @@ void validate_release(const ReleaseSpec& release, bool chute) {
         if (poly->path.empty()) throw ConfigError("release.polygons", "expected a file name");
         if (poly->thickness && (!std::isfinite(*poly->thickness) || *poly->thickness <= 0.0))
             throw ConfigError("release.thickness", "expected a positive thickness in metres");
+        if (poly->thickness && !poly->thickness_field.empty())
+            throw ConfigError("release.thickness",
+                              "give either a thickness or a thickness_field, not both");
         if (poly->volume && (!std::isfinite(*poly->volume) || *poly->volume <= 0.0))
             throw ConfigError("release.volume", "expected a positive volume in m^3");
         return;
@@ -72,6 +79,11 @@ void validate(const Scenario& s) {
     validate_release(s.release, is_chute(s));
     if (s.points && s.points->path.empty())
         throw ConfigError("points.file", "expected a file name");
+    // The chute's grid is in its own frame, not in a CRS the points could be given in.
+    if (s.points && is_chute(s))
+        throw ConfigError("points.file",
+                          "monitoring points need a DEM terrain "
+                          "(terrain.type = \"dem\"); the chute has none");
 }
 
 }  // namespace avalanche

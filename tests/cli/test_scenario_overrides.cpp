@@ -85,14 +85,13 @@ TEST(ScenarioOverrides, DemAndReleaseFlagsMakeADemScenario) {
 
     o.release = "release.gpkg";
     o.crs.reset();
-    o.thickness = 2.0;
     o.thickness_field = "d";
     o.volume = 5e4;
     o.points = "points.csv";
     s = assemble_scenario(std::nullopt, o);
     const auto& p = std::get<PolygonReleaseSpec>(s.release);
     EXPECT_EQ(p.path, "release.gpkg");
-    EXPECT_EQ(p.thickness, 2.0);
+    EXPECT_EQ(p.thickness, std::nullopt);
     EXPECT_EQ(p.thickness_field, "d");
     EXPECT_EQ(p.volume, 5e4);
     ASSERT_TRUE(s.points.has_value());
@@ -105,6 +104,89 @@ TEST(ScenarioOverrides, DemAndReleaseFlagsMakeADemScenario) {
     EXPECT_EQ(
         config_error([&] { assemble_scenario(std::nullopt, no_release); }).rfind("--release:", 0),
         0u);
+}
+
+// A polygon release's thickness comes from a number or from a field: the flag for one
+// replaces the file's other, as any flag its key; both at once are refused up front, not
+// once the DEM is read.
+TEST(ScenarioOverrides, AThicknessFlagReplacesTheFilesThicknessFieldAndTheReverse) {
+    test::ScratchDir dir("thickness");
+    const std::string dem = "[terrain]\ntype = \"dem\"\ndem = \"a.tif\"\n";
+    const std::string by_field = dir.write(
+        "field.toml", dem + "[release]\npolygons = \"r.gpkg\"\nthickness_field = \"d\"\n");
+    const std::string by_number =
+        dir.write("number.toml", dem + "[release]\npolygons = \"r.gpkg\"\nthickness = 1.5\n");
+    ScenarioOverrides o;
+    o.thickness = 2.0;
+    Scenario s = assemble_scenario(by_field, o);
+    EXPECT_EQ(std::get<PolygonReleaseSpec>(s.release).thickness, 2.0);
+    EXPECT_EQ(std::get<PolygonReleaseSpec>(s.release).thickness_field, "");
+    o = {};
+    o.thickness_field = "depth";
+    s = assemble_scenario(by_number, o);
+    EXPECT_EQ(std::get<PolygonReleaseSpec>(s.release).thickness, std::nullopt);
+    EXPECT_EQ(std::get<PolygonReleaseSpec>(s.release).thickness_field, "depth");
+
+    o.thickness = 2.0;
+    const std::string both_flags = config_error([&] { assemble_scenario(by_number, o); });
+    EXPECT_EQ(both_flags.rfind("--thickness: give either --thickness or --thickness-field", 0), 0u)
+        << both_flags;
+    const std::string both_keys = dir.write(
+        "both.toml",
+        dem + "[release]\npolygons = \"r.gpkg\"\nthickness = 1.5\nthickness_field = \"d\"\n");
+    const std::string in_file = config_error([&] { assemble_scenario(both_keys, {}); });
+    EXPECT_EQ(in_file.rfind(both_keys + ": release.thickness: give either", 0), 0u) << in_file;
+}
+
+// Inputs that a scene cannot use are refused before anything is read, naming the file
+// and its key: monitoring points on the chute (whose frame has no CRS to place them
+// in), an analytic release shape on a DEM.
+TEST(ScenarioOverrides, PointsOnTheChuteAndShapesOnADemAreRefusedUpFront) {
+    test::ScratchDir dir("misfits");
+    const std::string chute =
+        dir.write("chute.toml", std::string(test::kSmallChute) + "\n[points]\nfile = \"p.csv\"\n");
+    const std::string points = config_error([&] { assemble_scenario(chute, {}); });
+    EXPECT_EQ(points.rfind(chute + ": points.file: monitoring points need a DEM terrain", 0), 0u)
+        << points;
+    ScenarioOverrides o;
+    o.points = "p.csv";
+    const std::string flag =
+        config_error([&] { assemble_scenario(dir.write("plain.toml", test::kSmallChute), o); });
+    EXPECT_EQ(flag.rfind("--points: monitoring points need a DEM terrain", 0), 0u) << flag;
+
+    const std::string dem_shape =
+        dir.write("dem_shape.toml",
+                  "[terrain]\ntype = \"dem\"\ndem = \"a.tif\"\n[release]\nshape = \"cap\"\n"
+                  "center = [1.0, 1.0]\nradius = 1.0\n");
+    const std::string shape = config_error([&] { assemble_scenario(dem_shape, {}); });
+    EXPECT_EQ(shape.rfind(dem_shape + ": release.shape: a DEM terrain takes release polygons", 0),
+              0u)
+        << shape;
+}
+
+// A grid CRS that PROJ cannot read, or one not in metres, is refused with the scenario,
+// naming the flag or the file's key, before a DEM is read or a folder made.
+TEST(ScenarioOverrides, TheGridCrsIsCheckedWithTheScenario) {
+    ScenarioOverrides o;
+    o.dem = {"a.tif"};
+    o.release = "r.gpkg";
+    o.crs = "EPSG:999999";
+    const std::string unknown = config_error([&] { assemble_scenario(std::nullopt, o); });
+    EXPECT_EQ(unknown.rfind("--crs: cannot interpret 'EPSG:999999'", 0), 0u) << unknown;
+    o.crs = "EPSG:4326";
+    const std::string degrees = config_error([&] { assemble_scenario(std::nullopt, o); });
+    EXPECT_EQ(degrees.rfind("--crs: the requested CRS", 0), 0u) << degrees;
+    EXPECT_NE(degrees.find("not a projected CRS"), std::string::npos) << degrees;
+    o.crs = "EPSG:32633";
+    EXPECT_NO_THROW(assemble_scenario(std::nullopt, o));
+
+    test::ScratchDir dir("crs");
+    const std::string file =
+        dir.write("scenario.toml",
+                  "[terrain]\ntype = \"dem\"\ndem = \"a.tif\"\ncrs = \"EPSG:4326\"\n"
+                  "[release]\npolygons = \"r.gpkg\"\nthickness = 1.0\n");
+    const std::string in_file = config_error([&] { assemble_scenario(file, {}); });
+    EXPECT_EQ(in_file.rfind(file + ": terrain.crs: the requested CRS", 0), 0u) << in_file;
 }
 
 TEST(ScenarioOverrides, TextNamesTheFlagsAsACommandLineGivesThem) {

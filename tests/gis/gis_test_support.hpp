@@ -3,6 +3,7 @@
 // own orientation (row 0 = north), independently of the library under test.
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -84,6 +85,46 @@ inline std::vector<double> read_raw_rows(const std::string& path, int* width = n
     if (width) *width = w;
     if (height) *height = h;
     return rows;
+}
+
+// Copies the features of `source`'s first layer into a new GeoPackage `path` (layer
+// "copied", the source's CRS and fields), each geometry forced to `type` (a curve type
+// such as wkbCurvePolygon or wkbMultiSurface, or the source's own); with
+// `attribute_table`, an attribute-only table beside it, as QGIS writes 'layer_styles'
+// when a style is saved in the GeoPackage.
+inline void copy_to_geopackage(const std::string& source, const std::string& path,
+                               OGRwkbGeometryType type, bool attribute_table) {
+    GDALAllRegister();
+    GDALDataset* in = GDALDataset::Open(source.c_str(), GDAL_OF_VECTOR);
+    ASSERT_NE(in, nullptr) << source;
+    OGRLayer* from = in->GetLayer(0);
+    GDALDriver* gpkg = GetGDALDriverManager()->GetDriverByName("GPKG");
+    GDALDataset* out = gpkg->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+    ASSERT_NE(out, nullptr) << path;
+    OGRLayer* to = out->CreateLayer("copied", from->GetSpatialRef(), type, nullptr);
+    ASSERT_NE(to, nullptr);
+    for (int k = 0; k < from->GetLayerDefn()->GetFieldCount(); ++k)
+        ASSERT_EQ(to->CreateField(from->GetLayerDefn()->GetFieldDefn(k)), OGRERR_NONE);
+    from->ResetReading();
+    for (auto& f : *from) {
+        OGRFeature copy(to->GetLayerDefn());
+        ASSERT_EQ(copy.SetFrom(f.get()), OGRERR_NONE);
+        copy.SetGeometryDirectly(
+            OGRGeometryFactory::forceTo(f->GetGeometryRef()->clone(), type, nullptr));
+        ASSERT_EQ(wkbFlatten(copy.GetGeometryRef()->getGeometryType()), wkbFlatten(type));
+        ASSERT_EQ(to->CreateFeature(&copy), OGRERR_NONE);
+    }
+    if (attribute_table) {
+        OGRLayer* table = out->CreateLayer("layer_styles", nullptr, wkbNone, nullptr);
+        ASSERT_NE(table, nullptr);
+        OGRFieldDefn name("styleName", OFTString);
+        ASSERT_EQ(table->CreateField(&name), OGRERR_NONE);
+        OGRFeature row(table->GetLayerDefn());
+        row.SetField("styleName", "hazard");
+        ASSERT_EQ(table->CreateFeature(&row), OGRERR_NONE);
+    }
+    GDALClose(out);
+    GDALClose(in);
 }
 
 // Runs f, expects an exception of type E whose message contains every fragment.

@@ -119,6 +119,64 @@ TEST(LoadDem, TilesInDifferentCrsAreWarpedTogether) {
     EXPECT_NEAR(mixed.z_max, whole.z_max, 15.0);
 }
 
+// Tiles of one CRS stored in different types (an Int16 tile beside a Float32 one) make
+// one mosaic: the grid and elevations of the same area in one file.
+TEST(LoadDem, TilesOfDifferentDataTypesAreMosaickedTogether) {
+    TempDir tmp;
+    const auto z = [](int col, int row) { return 1000.0 + 3.0 * col + 7.0 * row; };  // whole m
+    const auto gt = [](double x0) {
+        return std::array<double, 6>{x0, 10.0, 0.0, 5000.0, 0.0, -10.0};
+    };
+    testing::write_raw_geotiff(tmp.file("whole.tif"), 40, 20, gt(1000.0), "EPSG:31287", z);
+    testing::write_raw_geotiff(tmp.file("west.tif"), 20, 20, gt(1000.0), "EPSG:31287", z,
+                               GDT_Float32);
+    testing::write_raw_geotiff(
+        tmp.file("east.tif"), 20, 20, gt(1200.0), "EPSG:31287",
+        [&](int col, int row) { return z(col + 20, row); }, GDT_Int16);
+    const Dem whole = load_dem({tmp.file("whole.tif")});
+    const Dem tiled = load_dem({tmp.file("west.tif"), tmp.file("east.tif")});
+    EXPECT_EQ(tiled.geo.grid.nx, whole.geo.grid.nx);
+    EXPECT_EQ(tiled.geo.grid.ny, whole.geo.grid.ny);
+    EXPECT_EQ(tiled.filled_voids, 0);
+    EXPECT_EQ(tiled.z, whole.z);
+}
+
+// Tiles without a CRS, given one by the option, are mosaicked through views that carry
+// it (this once crashed: the mosaic outlived the views it reads).
+TEST(LoadDem, TilesWithoutCrsAreMosaickedInTheGivenCrs) {
+    TempDir tmp;
+    const auto z = [](int col, int row) { return 1000.0 + 3.0 * col + 7.0 * row; };
+    const auto gt = [](double x0) {
+        return std::array<double, 6>{x0, 10.0, 0.0, 5000.0, 0.0, -10.0};
+    };
+    testing::write_raw_geotiff(tmp.file("whole.tif"), 40, 20, gt(1000.0), "EPSG:31287", z);
+    testing::write_raw_geotiff(tmp.file("west.tif"), 20, 20, gt(1000.0), "", z);
+    testing::write_raw_geotiff(tmp.file("east.tif"), 20, 20, gt(1200.0), "",
+                               [&](int col, int row) { return z(col + 20, row); });
+    DemOptions opts;
+    opts.crs = "EPSG:31287";
+    const Dem tiled = load_dem({tmp.file("west.tif"), tmp.file("east.tif")}, opts);
+    EXPECT_EQ(tiled.geo.epsg(), 31287);
+    EXPECT_EQ(tiled.filled_voids, 0);
+    EXPECT_EQ(tiled.z, load_dem({tmp.file("whole.tif")}).z);
+}
+
+// Elevations stored scaled (decimetres in integers, with a scale in the band) would make
+// terrain ten times too tall if read as they are stored.
+TEST(LoadDem, ScaledElevationsAreRefused) {
+    TempDir tmp;
+    const std::string path = tmp.file("decimetres.tif");
+    testing::write_raw_geotiff(
+        path, 20, 20, {1000.0, 10.0, 0.0, 5000.0, 0.0, -10.0}, "EPSG:31287",
+        [](int col, int row) { return 10000.0 + 30.0 * col + 70.0 * row; }, GDT_UInt16);
+    GDALDataset* ds = GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE);
+    ASSERT_NE(ds, nullptr);
+    ds->GetRasterBand(1)->SetScale(0.1);
+    GDALClose(ds);
+    expect_error<InputError>([&] { load_dem({path}); },
+                             {path, "scaled elevations (scale 0.1", "gdal_translate -unscale"});
+}
+
 TEST(LoadDem, UserCrsAndCellSizeReprojectAProjectedDem) {
     DemOptions opts;
     opts.crs = "EPSG:32632";

@@ -33,6 +33,35 @@ TEST(Points, CsvInTheGridCrs) {
     EXPECT_EQ(p[1].j, 0);
 }
 
+// "CSV UTF-8" as spreadsheets save it starts with a byte-order mark; the header is read
+// past it.
+TEST(Points, CsvWithAByteOrderMark) {
+    const auto p = parse_points_csv("\xEF\xBB\xBFname,x,y\nfan,600995.5,5200000.1\n", "bom.csv");
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].name, "fan");
+    EXPECT_EQ(p[0].x, 600995.5);
+}
+
+// Points in a GeoPackage that also holds an attribute-only table (QGIS's saved styles).
+TEST(Points, GeoPackageWithAnAttributeTable) {
+    TempDir tmp;
+    const GeoGrid geo{
+        // the avaKot grid, as in GeoPackageFromAvaKot
+        Grid{439, 517, 4.997688906601, 4.997688906601, 176973.437998359208, 376237.836376162944},
+        "EPSG:31287"};
+    testing::copy_to_geopackage(testing::avaKot("avaKot_points.gpkg"), tmp.file("styled.gpkg"),
+                                wkbPoint, true);
+    const auto original = read_points(testing::avaKot("avaKot_points.gpkg"), "", geo);
+    const auto styled = read_points(tmp.file("styled.gpkg"), "", geo);
+    ASSERT_EQ(styled.size(), original.size());
+    ASSERT_FALSE(styled.empty());
+    for (std::size_t k = 0; k < styled.size(); ++k) {
+        EXPECT_EQ(styled[k].name, original[k].name);
+        EXPECT_EQ(styled[k].i, original[k].i);
+        EXPECT_EQ(styled[k].j, original[k].j);
+    }
+}
+
 TEST(Points, CsvInAnotherCrsIsReprojected) {
     TempDir tmp;
     const GeoGrid geo = utm_grid();

@@ -97,6 +97,39 @@ TEST(ReleasePolygons, ConstantThicknessAndThicknessField) {
     EXPECT_EQ(released_cells(f), 100);  // 50 m x 50 m on 5 m cells, cell centres inside
 }
 
+// A GeoPackage as QGIS leaves it after a style was saved in it: the release layer and an
+// attribute-only table ('layer_styles'), which holds no polygon and is not read.
+TEST(ReleasePolygons, AttributeTablesBesideTheLayerAreSkipped) {
+    TempDir tmp;
+    const GeoGrid& geo = avaKot_dem().geo;
+    const std::string path = tmp.file("styled.gpkg");
+    testing::copy_to_geopackage(testing::avaKot("avaKot_release.gpkg"), path, wkbPolygon, true);
+    const Release original =
+        rasterize_release_polygons(testing::avaKot("avaKot_release.gpkg"), geo);
+    const Release styled = rasterize_release_polygons(path, geo);
+    EXPECT_EQ(styled.features, 1);
+    EXPECT_EQ(styled.thickness, original.thickness);
+    ReleaseOptions constant;
+    constant.thickness = 2.0;
+    EXPECT_EQ(rasterize_release_polygons(path, geo, constant).features, 1);
+}
+
+// Curve geometry types (what QGIS writes for a layer of "CurvePolygon" or
+// "MultiSurface" type) hold the same polygon: the same cells as the plain polygon.
+TEST(ReleasePolygons, CurveGeometryTypesCoverTheCellsOfTheirPolygons) {
+    TempDir tmp;
+    const GeoGrid& geo = avaKot_dem().geo;
+    const Release original =
+        rasterize_release_polygons(testing::avaKot("avaKot_release.gpkg"), geo);
+    ASSERT_GT(released_cells(original), 100);
+    for (const OGRwkbGeometryType type : {wkbCurvePolygon, wkbMultiSurface}) {
+        const std::string path = tmp.file(std::string(OGRGeometryTypeToName(type)) + ".gpkg");
+        testing::copy_to_geopackage(testing::avaKot("avaKot_release.gpkg"), path, type, false);
+        const Release curved = rasterize_release_polygons(path, geo);
+        EXPECT_EQ(curved.thickness, original.thickness) << OGRGeometryTypeToName(type);
+    }
+}
+
 TEST(ReleasePolygons, BadThicknessAttributesAreRefused) {
     TempDir tmp;
     const GeoGrid& geo = avaKot_dem().geo;

@@ -34,4 +34,9 @@ std::string utm_crs_wkt_for(double lon, double lat);
 // ConfigError(key, ...) if GDAL/PROJ cannot interpret it.
 std::string crs_wkt_from_user(const std::string& text, const std::string& key = "crs");
 
+// A CRS the user asks the grid to be in: ConfigError(key, ...) unless GDAL/PROJ can
+// interpret it as a projected CRS in metres. Checked with the scenario, before any
+// file is read or written.
+void check_grid_crs(const std::string& text, const std::string& key);
+
 }  // namespace avalanche::gis
