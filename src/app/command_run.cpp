@@ -106,6 +106,7 @@ int execute_new_run(const RunArguments& args, const GlobalOptions& global,
     spdlog::debug("effective configuration: {}", effective_config(scenario).dump());
     set_threads(args.threads);
     prepare_output_folder(args.out, args.overwrite);
+    if (args.overwrite) remove_previous_run(args.out);
     return run_scene(prepare_timed(scenario), scenario, args.out, global, checkpoint_interval,
                      nullptr);
 }

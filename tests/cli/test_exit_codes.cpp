@@ -109,6 +109,52 @@ TEST(CliExitCodes, ExistingResultsAreRefusedWithoutOverwriteAndLeftUntouched) {
     EXPECT_NE(test::read_text(out + "/summary.json"), summary_before);
 }
 
+// A run killed before it finished leaves its checkpoint, the only state --resume can
+// continue: a new run in that folder needs --overwrite, as for finished results.
+TEST(CliExitCodes, AnUnfinishedRunsCheckpointIsKeptWithoutOverwrite) {
+    ScratchDir dir("unfinished");
+    const std::string scenario = dir.write("scenario.toml", test::kSmallChute);
+    const std::string out = dir.file("out");
+    std::filesystem::create_directories(out);
+    const std::string checkpoint = dir.write("out/checkpoint.h5", "an earlier run's state");
+    const std::string args = "run --scenario '" + scenario + "' --out '" + out + "'";
+    const auto r = run_binary(dir, args);
+    EXPECT_EQ(r.exit_code, 4);
+    expect_one_error_line(r, out + ": holds the checkpoint of an unfinished run");
+    EXPECT_NE(r.err.find("--resume " + out), std::string::npos) << r.err;
+    EXPECT_EQ(test::read_text(checkpoint), "an earlier run's state");
+    const auto again = run_binary(dir, args + " --overwrite");
+    EXPECT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_FALSE(std::filesystem::exists(checkpoint));
+}
+
+// --overwrite replaces an earlier run: the files it wrote go before the new run starts
+// (the maps its summary lists with their styles and quick-looks, the fixed names such as
+// the monitoring series a run without points does not write), so that neither a run
+// with fewer products nor a failed one leaves them beside its own. Other files stay.
+TEST(CliExitCodes, OverwriteRemovesTheEarlierRunsFilesAndNothingElse) {
+    ScratchDir dir("replaced");
+    const std::string scenario = dir.write("scenario.toml", test::kSmallChute);
+    const std::string out = dir.file("out");
+    std::filesystem::create_directories(out);
+    dir.write("out/summary.json",
+              R"({"products": ["old_map.tif", "../outside.txt", "monitoring.csv"]})");
+    for (const char* name : {"old_map.tif", "old_map.qml", "old_map.png", "monitoring.csv",
+                             "monitoring.h5", "report.md", "notes.txt"})
+        dir.write(std::string("out/") + name, "earlier");
+    const std::string outside = dir.write("outside.txt", "not the run's");
+    const auto r =
+        run_binary(dir, "run --scenario '" + scenario + "' --out '" + out + "' --overwrite");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* gone :
+         {"old_map.tif", "old_map.qml", "old_map.png", "monitoring.csv", "monitoring.h5"})
+        EXPECT_FALSE(std::filesystem::exists(out + "/" + gone)) << gone;
+    EXPECT_EQ(test::read_text(out + "/notes.txt"), "earlier");
+    EXPECT_EQ(test::read_text(outside), "not the run's");
+    EXPECT_NE(test::read_text(out + "/report.md"), "earlier");  // this run's
+    EXPECT_NE(test::read_text(out + "/summary.json").find("max_depth.tif"), std::string::npos);
+}
+
 TEST(CliExitCodes, UnwritableOutputFolderIsAnOutputErrorNamingIt) {
     ScratchDir dir("unwritable");
     const std::string scenario = dir.write("scenario.toml", test::kSmallChute);

@@ -100,8 +100,15 @@ RunOutcome execute_scene(PreparedScene&& scene, const Scenario& s, const RunOpti
 std::string scene_fingerprint_of(const PreparedScene& scene, const State& initial);
 
 // Output folder rules: refuses (OutputError, exit 4) a folder that already holds
-// summary.json or results.h5 unless `overwrite`; creates a missing folder; checks that
-// it is writable before any work is done.
+// summary.json or results.h5, or the checkpoint of an unfinished run, unless
+// `overwrite`; creates a missing folder; checks that it is writable before any work is
+// done.
 void prepare_output_folder(const std::string& dir, bool overwrite);
+
+// Removes the files an earlier run wrote in `dir` (--overwrite): the fixed names
+// (summary, results, checkpoints, reports, DEM, monitoring series) and the maps its
+// summary lists with their styles and quick-looks; nothing else. So a run with fewer
+// products, or one that fails, leaves none of the earlier run's beside its own.
+void remove_previous_run(const std::string& dir);
 
 }  // namespace avalanche
