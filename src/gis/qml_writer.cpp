@@ -1,11 +1,11 @@
 // QGIS layer styles (.qml) for single-band rasters.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/gis/style.hpp"
+#include "avalanche/io/atomic_file.hpp"
 #include "avalanche/io/html_text.hpp"  // its five entities are XML's too
 
 namespace avalanche::gis {
@@ -98,11 +98,8 @@ void write_qml(const std::string& path, const QmlStyle& style) {
            "  </pipe>\n"
            "  <blendMode>0</blendMode>\n"
            "</qgis>\n";
-    std::ofstream file(path, std::ios::binary | std::ios::trunc);
-    if (!file) throw OutputError(path, "cannot create the style file");
-    file << out.str();
-    file.close();
-    if (!file) throw OutputError(path, "cannot write the style file (disk full?)");
+    // Whole or not at all under its final name, as every product.
+    write_file_atomically(path, out.str());
 }
 
 }  // namespace avalanche::gis

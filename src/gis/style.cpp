@@ -1,6 +1,7 @@
 // Colour ramps: presets and evaluation (shared by .qml styles and PNG quick-looks).
 #include "avalanche/gis/style.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -98,6 +99,10 @@ ColorRamp velocity_ramp(std::vector<double> breaks_ms) {
 }
 
 ColorRamp pressure_ramp(std::vector<double> breaks_kpa) {
+    // The hazard limits come beside fixed breaks (1, 10, 100 kPa): limits of 1 and 10 kPa
+    // or above 100 must still give increasing classes, each once.
+    std::sort(breaks_kpa.begin(), breaks_kpa.end());
+    breaks_kpa.erase(std::unique(breaks_kpa.begin(), breaks_kpa.end()), breaks_kpa.end());
     return classes(
         breaks_kpa,
         {{254, 235, 226}, {251, 180, 185}, {247, 104, 161}, {197, 27, 138}, {122, 1, 119}}, "kPa");

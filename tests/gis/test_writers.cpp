@@ -237,6 +237,23 @@ TEST(Style, DiscreteClassesMatchQgis) {
     EXPECT_EQ(color_at(arrival_time_ramp(60.0), 0.0).a, 255);  // release cells at t = 0
 }
 
+// Hazard limits that coincide with the fixed breaks (1 and 10 kPa) or lie beyond them
+// still give increasing classes, each once (no empty "10 - 10 kPa" class, no classes
+// out of order).
+TEST(Style, PressureClassesFromAnyHazardLimits) {
+    for (const auto& breaks : std::vector<std::vector<double>>{{1.0, 1.0, 10.0, 10.0, 100.0},
+                                                               {1.0, 50.0, 10.0, 300.0, 100.0}}) {
+        const ColorRamp r = pressure_ramp(breaks);
+        for (std::size_t k = 1; k < r.stops.size(); ++k)
+            EXPECT_LT(r.stops[k - 1].value, r.stops[k].value) << k;
+    }
+    EXPECT_EQ(pressure_ramp({1.0, 1.0, 10.0, 10.0, 100.0}).stops.size(), 3u);
+    const ColorRamp high = pressure_ramp({1.0, 50.0, 10.0, 300.0, 100.0});
+    ASSERT_EQ(high.stops.size(), 5u);
+    EXPECT_EQ(high.stops[2].value, 50.0);
+    EXPECT_EQ(high.stops[4].value, 300.0);
+}
+
 TEST(Quicklook, HillshadeFacesTheNorthWestLight) {
     const Grid g{5, 5, 10.0, 10.0, 0.0, 0.0};
     std::vector<double> flat(g.cells(), 100.0), to_se(g.cells()), to_nw(g.cells());
