@@ -78,10 +78,9 @@ void remove_previous_run(const std::string& dir) {
             name.find('\\') != std::string::npos || name == "." || name == "..")
             continue;
         fs::remove(d / name, ec);
-        for (const char* companion : {".qml", ".png"}) {
-            if (fs::path(name).extension() != ".tif") continue;
-            fs::remove(d / fs::path(name).replace_extension(companion), ec);
-        }
+        if (fs::path(name).extension() == ".tif")  // a map's style and quick-look
+            for (const char* companion : {".qml", ".png"})
+                fs::remove(d / fs::path(name).replace_extension(companion), ec);
     }
 }
 
