@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "avalanche/io/atomic_file.hpp"
+#include "avalanche/io/csv_text.hpp"
 #include "avalanche/io/svg_plot.hpp"
 #include "batch_outputs.hpp"
 
@@ -24,13 +25,6 @@ const std::pair<const char*, const char*> kRunoutColumns[] = {
     {"max_velocity_ms", "max_velocity_ms"},
     {"deposit_volume_m3", "deposit_volume_m3"},
 };
-
-std::string csv_cell(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string out = "\"";
-    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return out + "\"";
-}
 
 // A JSON value as a cell: numbers exactly as in summary.json, null as empty.
 std::string cell(const nlohmann::json& v) {
@@ -176,13 +170,13 @@ std::vector<std::string> write_comparison(const std::string& dir,
     for (const auto* p : params) csv << "," << p->column;
     for (const auto& [column, key] : kRunoutColumns) csv << "," << column;
     csv << ",end_reason,caveats";
-    for (const auto& name : points) csv << "," << csv_cell("arrival_s_" + name);
+    for (const auto& name : points) csv << "," << csv_field("arrival_s_" + name);
     const bool calibrated = !observed.empty();
     if (calibrated) csv << ",jaccard,runout_error_m,fit_score,fit_rank";
     csv << ",wall_s\n";
     for (const auto* r : rows) {
         csv << r->batch_case->id;
-        for (const auto* p : params) csv << "," << csv_cell(value_of(*r, p));
+        for (const auto* p : params) csv << "," << csv_field(value_of(*r, p));
         if (r->summary) {
             const auto& runout = r->summary->at("runout");
             for (const auto& [column, key] : kRunoutColumns) csv << "," << cell(runout.at(key));
