@@ -250,10 +250,13 @@ std::vector<std::string> write_comparison(const std::string& dir,
                       shortest->batch_case->id.c_str(), runout_of(*shortest));
         md << buf;
     }
-    md << "\nAcross the scenarios: `impact_frequency.tif` (fraction of scenarios reaching each "
-          "cell), `envelope_max_depth.tif`, `envelope_max_velocity.tif`, "
-          "`envelope_max_pressure.tif`, `envelope_min_arrival_time.tif`; all values in "
-          "`comparison.csv`.\n";
+    // The maps across the scenarios are written only from complete ones (write_envelopes):
+    // without any, DIR may hold only an earlier batch's.
+    if (longest)
+        md << "\nAcross the scenarios: `impact_frequency.tif` (fraction of scenarios reaching "
+              "each cell), `envelope_max_depth.tif`, `envelope_max_velocity.tif`, "
+              "`envelope_max_pressure.tif`, `envelope_min_arrival_time.tif`; all values in "
+              "`comparison.csv`.\n";
     if (calibrated) md << ranking_section(rows, observed);
     if (!plots.empty()) {
         md << "\n";

@@ -281,7 +281,7 @@ void write_batch_outputs(const BatchArguments& args, std::vector<BatchResult>& r
     const auto maps = write_envelopes(args.out, results);
     files.insert(files.end(), maps.begin(), maps.end());
     if (observation) files.push_back(write_calibration(args.out, *observation, results));
-    for (const auto& f : write_batch_report_html(args.out, base)) files.push_back(f);
+    for (const auto& f : write_batch_report_html(args.out, base, files)) files.push_back(f);
     spdlog::info("wrote {} comparison file(s) into {}", files.size(), args.out);
     if (!global.quiet)
         std::cout << "comparison: " << (fs::path(args.out) / "comparison.csv").string()
