@@ -145,6 +145,20 @@ std::string caveat_codes(const nlohmann::json& summary) {
 
 }  // namespace
 
+const char* outcome_label(ScenarioOutcome outcome) {
+    switch (outcome) {
+        case ScenarioOutcome::complete:
+            return "complete";
+        case ScenarioOutcome::failed:
+            return "failed";
+        case ScenarioOutcome::interrupted:
+            return "interrupted";
+        case ScenarioOutcome::not_run:
+            return "not run";
+    }
+    return "failed";
+}
+
 std::vector<const SweepParameter*> swept_parameters(const std::vector<BatchResult>& rows) {
     std::vector<const SweepParameter*> out;
     if (!rows.empty())
@@ -186,7 +200,7 @@ std::vector<std::string> write_comparison(const std::string& dir,
             csv << "," << cell(r->summary->at("wall_s")) << "\n";
         } else {
             for (std::size_t k = 0; k < std::size(kRunoutColumns); ++k) csv << ",";
-            csv << ",failed," << std::string(points.size(), ',');
+            csv << "," << outcome_label(r->outcome) << "," << std::string(points.size(), ',');
             if (calibrated) csv << ",,,,";
             csv << ",\n";
         }
@@ -222,10 +236,18 @@ std::vector<std::string> write_comparison(const std::string& dir,
     md << "\n";
     const BatchResult *longest = nullptr, *shortest = nullptr;
     for (const auto* r : rows) {
-        md << "| [" << r->batch_case->id << "](" << r->batch_case->id << "/report.md) |";
+        // Only reports this batch's scenarios wrote: one never started may keep an earlier
+        // batch's folder, and one that failed early has none.
+        const std::string& id = r->batch_case->id;
+        if (r->outcome != ScenarioOutcome::not_run && std::filesystem::exists(d / id / "report.md"))
+            md << "| [" << id << "](" << id << "/report.md) |";
+        else
+            md << "| " << id << " |";
         for (const auto* p : params) md << " " << value_of(*r, p) << " |";
         if (!r->summary) {
-            md << " | | | | failed: " << r->failure << " |\n";
+            md << " | | | | " << outcome_label(r->outcome);
+            if (r->outcome == ScenarioOutcome::failed) md << ": " << r->failure;
+            md << " |\n";
             continue;
         }
         const auto& ro = r->summary->at("runout");

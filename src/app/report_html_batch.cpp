@@ -73,6 +73,7 @@ std::string comparison_section(const fs::path& dir, const Table& csv) {
         return s.str() + "<p class=\"missing\">comparison.csv is empty.</p></section>\n";
     const auto& header = csv.front();
     const auto runout = std::find(header.begin(), header.end(), "runout_m") - header.begin();
+    const auto end_reason = std::find(header.begin(), header.end(), "end_reason") - header.begin();
     s << "<p>One row per scenario (values rounded to 4 digits; exact values in "
          "<code>comparison.csv</code>). The id links to the scenario's own report.</p>\n"
          "<div class=\"wide\"><table class=\"comparison\"><tr>";
@@ -89,13 +90,16 @@ std::string comparison_section(const fs::path& dir, const Table& csv) {
     for (std::size_t r = 1; r < csv.size(); ++r) {
         const auto& row = csv[r];
         const std::string id = row.empty() ? "" : row[0];
+        // A scenario the batch never started may keep an earlier batch's folder and report.
+        const bool not_run =
+            static_cast<std::size_t>(end_reason) < row.size() && row[end_reason] == "not run";
         s << "<tr>";
         for (std::size_t c = 0; c < row.size(); ++c) {
             const std::string attrs = " data-id=\"" + html_escape(id) + "\" data-column=\"" +
                                       html_escape(c < header.size() ? header[c] : "") +
                                       "\" data-value=\"" + html_escape(row[c]) + "\"";
             double v = 0;
-            if (c == 0 && fs::exists(dir / id / "report.html"))
+            if (c == 0 && !not_run && fs::exists(dir / id / "report.html"))
                 s << "<td" << attrs << "><a href=\"" << html_escape(id) << "/report.html\">"
                   << html_escape(id) << "</a></td>";
             else if (c > 0 && is_number(row[c], v))
