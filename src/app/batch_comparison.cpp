@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "avalanche/io/atomic_file.hpp"
+#include "avalanche/io/csv_text.hpp"
 #include "avalanche/io/svg_plot.hpp"
 #include "batch_outputs.hpp"
 
@@ -24,13 +25,6 @@ const std::pair<const char*, const char*> kRunoutColumns[] = {
     {"max_velocity_ms", "max_velocity_ms"},
     {"deposit_volume_m3", "deposit_volume_m3"},
 };
-
-std::string csv_cell(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string out = "\"";
-    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return out + "\"";
-}
 
 // A JSON value as a cell: numbers exactly as in summary.json, null as empty.
 std::string cell(const nlohmann::json& v) {
@@ -151,6 +145,20 @@ std::string caveat_codes(const nlohmann::json& summary) {
 
 }  // namespace
 
+const char* outcome_label(ScenarioOutcome outcome) {
+    switch (outcome) {
+        case ScenarioOutcome::complete:
+            return "complete";
+        case ScenarioOutcome::failed:
+            return "failed";
+        case ScenarioOutcome::interrupted:
+            return "interrupted";
+        case ScenarioOutcome::not_run:
+            return "not run";
+    }
+    return "failed";
+}
+
 std::vector<const SweepParameter*> swept_parameters(const std::vector<BatchResult>& rows) {
     std::vector<const SweepParameter*> out;
     if (!rows.empty())
@@ -176,13 +184,13 @@ std::vector<std::string> write_comparison(const std::string& dir,
     for (const auto* p : params) csv << "," << p->column;
     for (const auto& [column, key] : kRunoutColumns) csv << "," << column;
     csv << ",end_reason,caveats";
-    for (const auto& name : points) csv << "," << csv_cell("arrival_s_" + name);
+    for (const auto& name : points) csv << "," << csv_field("arrival_s_" + name);
     const bool calibrated = !observed.empty();
     if (calibrated) csv << ",jaccard,runout_error_m,fit_score,fit_rank";
     csv << ",wall_s\n";
     for (const auto* r : rows) {
         csv << r->batch_case->id;
-        for (const auto* p : params) csv << "," << csv_cell(value_of(*r, p));
+        for (const auto* p : params) csv << "," << csv_field(value_of(*r, p));
         if (r->summary) {
             const auto& runout = r->summary->at("runout");
             for (const auto& [column, key] : kRunoutColumns) csv << "," << cell(runout.at(key));
@@ -192,7 +200,7 @@ std::vector<std::string> write_comparison(const std::string& dir,
             csv << "," << cell(r->summary->at("wall_s")) << "\n";
         } else {
             for (std::size_t k = 0; k < std::size(kRunoutColumns); ++k) csv << ",";
-            csv << ",failed," << std::string(points.size(), ',');
+            csv << "," << outcome_label(r->outcome) << "," << std::string(points.size(), ',');
             if (calibrated) csv << ",,,,";
             csv << ",\n";
         }
@@ -228,10 +236,18 @@ std::vector<std::string> write_comparison(const std::string& dir,
     md << "\n";
     const BatchResult *longest = nullptr, *shortest = nullptr;
     for (const auto* r : rows) {
-        md << "| [" << r->batch_case->id << "](" << r->batch_case->id << "/report.md) |";
+        // Only reports this batch's scenarios wrote: one never started may keep an earlier
+        // batch's folder, and one that failed early has none.
+        const std::string& id = r->batch_case->id;
+        if (r->outcome != ScenarioOutcome::not_run && std::filesystem::exists(d / id / "report.md"))
+            md << "| [" << id << "](" << id << "/report.md) |";
+        else
+            md << "| " << id << " |";
         for (const auto* p : params) md << " " << value_of(*r, p) << " |";
         if (!r->summary) {
-            md << " | | | | failed: " << r->failure << " |\n";
+            md << " | | | | " << outcome_label(r->outcome);
+            if (r->outcome == ScenarioOutcome::failed) md << ": " << r->failure;
+            md << " |\n";
             continue;
         }
         const auto& ro = r->summary->at("runout");
@@ -256,10 +272,13 @@ std::vector<std::string> write_comparison(const std::string& dir,
                       shortest->batch_case->id.c_str(), runout_of(*shortest));
         md << buf;
     }
-    md << "\nAcross the scenarios: `impact_frequency.tif` (fraction of scenarios reaching each "
-          "cell), `envelope_max_depth.tif`, `envelope_max_velocity.tif`, "
-          "`envelope_max_pressure.tif`, `envelope_min_arrival_time.tif`; all values in "
-          "`comparison.csv`.\n";
+    // The maps across the scenarios are written only from complete ones (write_envelopes):
+    // without any, DIR may hold only an earlier batch's.
+    if (longest)
+        md << "\nAcross the scenarios: `impact_frequency.tif` (fraction of scenarios reaching "
+              "each cell), `envelope_max_depth.tif`, `envelope_max_velocity.tif`, "
+              "`envelope_max_pressure.tif`, `envelope_min_arrival_time.tif`; all values in "
+              "`comparison.csv`.\n";
     if (calibrated) md << ranking_section(rows, observed);
     if (!plots.empty()) {
         md << "\n";

@@ -22,6 +22,7 @@ Manifest read_manifest(const std::string& path) {
             e.source_hash = s.value("source_hash", "");
             e.complete = s.at("complete").get<bool>();
             e.error = s.value("error", "");
+            e.interrupted = s.value("interrupted", false);
             e.config_hash_without_paths = s.value("config_hash_without_paths", "");
             m[s.at("id").get<std::string>()] = e;
         }
@@ -43,6 +44,7 @@ void write_manifest(const std::string& path, const Manifest& manifest,
                             {"source_hash", e.source_hash},
                             {"complete", e.complete}};
         if (!e.error.empty()) s["error"] = e.error;
+        if (e.interrupted) s["interrupted"] = true;
         scenarios.push_back(std::move(s));
     }
     const nlohmann::json js = {{"batch", batch}, {"scenarios", scenarios}};

@@ -23,12 +23,25 @@ struct ScenarioFit {
     int rank = 0;                     // 1 = best fit among the complete scenarios
 };
 
+// What became of a scenario in this batch (from the manifest).
+enum class ScenarioOutcome {
+    complete,     // now or in an earlier batch (skipped on resume)
+    failed,       // an error stopped it: BatchResult::failure
+    interrupted,  // Ctrl-C or SIGTERM stopped it; its folder holds its partial products
+    not_run,      // the batch was stopped before it started
+};
+
+// comparison.csv's end_reason for a scenario without a summary: "failed", "interrupted",
+// "not run".
+const char* outcome_label(ScenarioOutcome outcome);
+
 struct BatchResult {
     const BatchCase* batch_case = nullptr;
     std::string dir;                        // DIR/<id>
-    std::optional<nlohmann::json> summary;  // its summary.json; empty if it failed
+    std::optional<nlohmann::json> summary;  // its summary.json; only when complete
     std::string failure;                    // the error, if it failed
     std::optional<ScenarioFit> fit;         // with --observed, for complete scenarios
+    ScenarioOutcome outcome = ScenarioOutcome::complete;
 };
 
 // The swept parameters, in the order of the first case's values.

@@ -220,6 +220,7 @@ std::vector<Failure> run_pending(const std::vector<Planned*>& pending, Manifest&
             const bool done = outcome.stats.end_reason != EndReason::interrupted;
             manifest[id].complete = done;
             manifest[id].error.clear();
+            manifest[id].interrupted = !done;
             save_manifest();
             spdlog::info("finished ({} of {}){}", ++finished, pending.size(),
                          done ? "" : ": interrupted");
@@ -255,8 +256,10 @@ std::string rank_report(const std::vector<Planned*>& mine, Manifest& manifest,
                         {"interrupted", InterruptGuard::requested()}};
     for (const auto* p : mine) {
         const auto& e = manifest[p->batch_case.id];
-        r["scenarios"].push_back(
-            {{"id", p->batch_case.id}, {"complete", e.complete}, {"error", e.error}});
+        r["scenarios"].push_back({{"id", p->batch_case.id},
+                                  {"complete", e.complete},
+                                  {"error", e.error},
+                                  {"interrupted", e.interrupted}});
     }
     for (const auto& f : failures)
         r["failures"].push_back(
@@ -281,7 +284,7 @@ void write_batch_outputs(const BatchArguments& args, std::vector<BatchResult>& r
     const auto maps = write_envelopes(args.out, results);
     files.insert(files.end(), maps.begin(), maps.end());
     if (observation) files.push_back(write_calibration(args.out, *observation, results));
-    for (const auto& f : write_batch_report_html(args.out, base)) files.push_back(f);
+    for (const auto& f : write_batch_report_html(args.out, base, files)) files.push_back(f);
     spdlog::info("wrote {} comparison file(s) into {}", files.size(), args.out);
     if (!global.quiet)
         std::cout << "comparison: " << (fs::path(args.out) / "comparison.csv").string()
@@ -375,6 +378,7 @@ int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const Glob
                 auto& e = manifest[s.at("id").get<std::string>()];
                 e.complete = s.at("complete").get<bool>();
                 e.error = s.at("error").get<std::string>();
+                e.interrupted = s.at("interrupted").get<bool>();
             }
             for (const auto& f : r.at("failures"))
                 failures.push_back({f.at("id").get<std::string>(),
@@ -398,10 +402,18 @@ int run_batch_on(const BatchRanks& ranks, const BatchArguments& args, const Glob
                     : (failures.empty() ? 0 : static_cast<int>(failures.front().code)));
     if (!ranks.root()) return code;  // rank 0 writes DIR and reports
 
+    // Only complete scenarios are compared; the others say why from the manifest, since an
+    // interrupted one's summary.json (end_reason "interrupted") and a folder left by an
+    // earlier batch for a scenario this one never started are not results of this batch.
     std::vector<BatchResult> results;
     for (const auto& p : planned) {
-        BatchResult r{&p.batch_case, p.dir, std::nullopt, manifest[p.batch_case.id].error, {}};
-        if (manifest[p.batch_case.id].complete) r.summary = read_summary(p.dir);
+        const ManifestEntry& e = manifest[p.batch_case.id];
+        const ScenarioOutcome outcome = e.complete         ? ScenarioOutcome::complete
+                                        : !e.error.empty() ? ScenarioOutcome::failed
+                                        : e.interrupted    ? ScenarioOutcome::interrupted
+                                                           : ScenarioOutcome::not_run;
+        BatchResult r{&p.batch_case, p.dir, std::nullopt, e.error, {}, outcome};
+        if (e.complete) r.summary = read_summary(p.dir);
         results.push_back(std::move(r));
     }
     write_batch_outputs(args, results, observation, global);

@@ -1,7 +1,8 @@
 // DIR/report.html of a batch: the comparison table, the trend plots, the impact frequency
 // map and the calibration ranking, read back from the files the batch wrote (so that this
 // report does not depend on the batch's internal structures, and resumed batches get the
-// same report as fresh ones).
+// same report as fresh ones). Only the files this batch wrote are read: DIR may still hold
+// plots, a calibration or a frequency map of an earlier batch with other sweeps.
 #include <algorithm>
 #include <filesystem>
 #include <sstream>
@@ -72,6 +73,7 @@ std::string comparison_section(const fs::path& dir, const Table& csv) {
         return s.str() + "<p class=\"missing\">comparison.csv is empty.</p></section>\n";
     const auto& header = csv.front();
     const auto runout = std::find(header.begin(), header.end(), "runout_m") - header.begin();
+    const auto end_reason = std::find(header.begin(), header.end(), "end_reason") - header.begin();
     s << "<p>One row per scenario (values rounded to 4 digits; exact values in "
          "<code>comparison.csv</code>). The id links to the scenario's own report.</p>\n"
          "<div class=\"wide\"><table class=\"comparison\"><tr>";
@@ -88,13 +90,16 @@ std::string comparison_section(const fs::path& dir, const Table& csv) {
     for (std::size_t r = 1; r < csv.size(); ++r) {
         const auto& row = csv[r];
         const std::string id = row.empty() ? "" : row[0];
+        // A scenario the batch never started may keep an earlier batch's folder and report.
+        const bool not_run =
+            static_cast<std::size_t>(end_reason) < row.size() && row[end_reason] == "not run";
         s << "<tr>";
         for (std::size_t c = 0; c < row.size(); ++c) {
             const std::string attrs = " data-id=\"" + html_escape(id) + "\" data-column=\"" +
                                       html_escape(c < header.size() ? header[c] : "") +
                                       "\" data-value=\"" + html_escape(row[c]) + "\"";
             double v = 0;
-            if (c == 0 && fs::exists(dir / id / "report.html"))
+            if (c == 0 && !not_run && fs::exists(dir / id / "report.html"))
                 s << "<td" << attrs << "><a href=\"" << html_escape(id) << "/report.html\">"
                   << html_escape(id) << "</a></td>";
             else if (c > 0 && is_number(row[c], v))
@@ -134,13 +139,15 @@ std::string comparison_section(const fs::path& dir, const Table& csv) {
     return s.str();
 }
 
-std::string plots_section(const fs::path& dir) {
+bool wrote(const std::vector<std::string>& files, const std::string& name) {
+    return std::find(files.begin(), files.end(), name) != files.end();
+}
+
+std::string plots_section(const fs::path& dir, const std::vector<std::string>& files) {
     std::vector<fs::path> svgs;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(dir, ec))
-        if (e.path().extension() == ".svg" &&
-            e.path().filename().string().find("_vs_") != std::string::npos)
-            svgs.push_back(e.path());
+    for (const auto& f : files)
+        if (fs::path(f).extension() == ".svg" && f.find("_vs_") != std::string::npos)
+            svgs.push_back(dir / f);
     std::sort(svgs.begin(), svgs.end());
     if (svgs.empty()) return "";
     std::ostringstream s;
@@ -154,9 +161,10 @@ std::string plots_section(const fs::path& dir) {
 
 // The impact frequency drawn over the hillshade of a scenario's computational DEM.
 std::string frequency_section(const fs::path& dir, const Table& csv,
+                              const std::vector<std::string>& files,
                               std::vector<std::string>& written) {
     const fs::path tif = dir / "impact_frequency.tif";
-    if (!fs::exists(tif)) return "";
+    if (!wrote(files, "impact_frequency.tif")) return "";
     const gis::RasterData freq = gis::read_geotiff(tif.string());
     std::vector<double> elevation(freq.values.size(), 0.0);
     for (std::size_t r = 1; r < csv.size(); ++r) {
@@ -203,9 +211,9 @@ std::string cell_html(const nlohmann::json& v) {
 
 // calibration.json, whatever its exact layout: scalars as a list, every array of objects
 // as a table (the ranking), anything else as JSON text.
-std::string calibration_section(const fs::path& dir) {
+std::string calibration_section(const fs::path& dir, const std::vector<std::string>& files) {
     const fs::path path = dir / "calibration.json";
-    if (!fs::exists(path)) return "";
+    if (!wrote(files, "calibration.json")) return "";
     std::ostringstream s;
     s << "<section id=\"calibration\"><h2>Calibration against the observation</h2>\n";
     nlohmann::json cal;
@@ -257,7 +265,8 @@ std::string calibration_section(const fs::path& dir) {
 }  // namespace
 
 std::vector<std::string> write_batch_report_html(const std::string& dir,
-                                                 const std::string& base_scenario) {
+                                                 const std::string& base_scenario,
+                                                 const std::vector<std::string>& batch_files) {
     const fs::path d(dir);
     const Table csv = parse_csv(detail::read_file_bytes((d / "comparison.csv").string()));
     std::vector<std::string> written;
@@ -267,8 +276,8 @@ std::vector<std::string> write_batch_report_html(const std::string& dir,
          << html_escape(base_scenario)
          << "</code>. Each scenario's maps and numbers are in its own folder and report "
             "(follow the ids).</p></header>\n"
-         << comparison_section(d, csv) << calibration_section(d) << plots_section(d)
-         << frequency_section(d, csv, written);
+         << comparison_section(d, csv) << calibration_section(d, batch_files)
+         << plots_section(d, batch_files) << frequency_section(d, csv, batch_files, written);
     write_file_atomically((d / "report.html").string(),
                           detail::html_document("Avalanche hazard batch report", body.str()));
     written.push_back("report.html");

@@ -169,6 +169,13 @@ std::vector<MonitoringPoint> read_points(const std::string& path, const std::str
     for (const auto& p : raw) {
         if (!names.insert(p.name).second)
             throw InputError(path, p.where + ": duplicate point name '" + p.name + "'");
+        // The name becomes the point's group in monitoring.h5, where '/' separates groups
+        // and "." is the file's root group: refused now rather than when that file is
+        // written, after the whole simulation.
+        if (p.name == "." || p.name.find('/') != std::string::npos)
+            throw InputError(path, p.where + ": point name '" + p.name +
+                                       "' cannot name a group of monitoring.h5; expected a "
+                                       "name without '/' and other than '.'");
         if (!(p.x >= g.x0 && p.x < g.x_max() && p.y >= g.y0 && p.y < g.y_max())) {
             std::ostringstream msg;
             msg.precision(10);

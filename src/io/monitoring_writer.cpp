@@ -7,6 +7,7 @@
 
 #include "avalanche/core/error.hpp"
 #include "avalanche/io/atomic_file.hpp"
+#include "avalanche/io/csv_text.hpp"
 #include "hdf5_handles.hpp"
 
 namespace avalanche {
@@ -22,8 +23,8 @@ void write_monitoring_csv(const std::string& path, const MonitoringPoints& point
     for (std::size_t p = 0; p < points.points().size(); ++p) {
         const ProbeLocation& loc = points.points()[p];
         for (const ProbeSample& s : points.series()[p])
-            out << loc.name << ',' << loc.x << ',' << loc.y << ',' << s.t << ',' << s.h << ',' << s.u << ','
-                << s.v << ',' << s.speed << ',' << s.pressure << '\n';
+            out << csv_field(loc.name) << ',' << loc.x << ',' << loc.y << ',' << s.t << ',' << s.h
+                << ',' << s.u << ',' << s.v << ',' << s.speed << ',' << s.pressure << '\n';
     }
     write_file_atomically(path, out.str());
 }

@@ -92,6 +92,8 @@ const std::vector<BadInputCase> kCases = {
      {"points_non_numeric.csv", "line 3", "must be numbers", "17833O.5"}},
     {"point_outside_dem", "point outside the DEM", DEM_RUN "--points {bad}/points_outside.csv", 3,
      {"points_outside.csv", "'far'", "outside the grid"}},
+    {"point_name_with_slash", "point name that cannot name an HDF5 group", DEM_RUN "--points {bad}/points_name_slash.geojson", 3,
+     {"points_name_slash.geojson", "feature 1", "'Lift A/B'", "without '/'"}},
     // ---- flags on a DEM run (exit 2: the flag is named)
     {"negative_thickness_flag", "negative thickness", DEM_RUN "--thickness -1", 2,
      {"--thickness", "positive thickness"}},

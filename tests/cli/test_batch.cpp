@@ -12,6 +12,7 @@
 #include "avalanche/gis/raster_reader.hpp"
 #include "avalanche/io/effective_config.hpp"
 #include "batch_test_support.hpp"
+#include "checkpoint_test_support.hpp"
 
 namespace avalanche {
 namespace {
@@ -203,6 +204,66 @@ TEST(Batch, ResumeRecomputesWhatAProgramBuiltFromOtherSourcesComputed) {
     std::ofstream(out + "/manifest.json") << manifest.dump(2);
     ASSERT_EQ(run_batch(args), 0);
     EXPECT_NE(fs::last_write_time(out + "/delta=25/summary.json"), kept);
+}
+
+// Ctrl-C during the second of three scenarios: the comparison says which scenario was
+// interrupted and which never ran (both were reported as "failed", with no reason, and
+// linked a report.md the scenario never run does not have).
+TEST(Batch, InterruptedAndNeverStartedScenariosAreNotReportedAsFailed) {
+    test::ScratchDir dir("batch-interrupt");
+    // Cells of 0.25 m, not 0.5: a scenario runs for about a second, not 0.2 s, so
+    // that the signal (acted on within 0.1 s) finds the second one still running on a
+    // fast machine too.
+    std::string chute = test::kCoarseParametricChute;
+    const std::string coarse = "cell_size = 0.5";
+    ASSERT_NE(chute.find(coarse), std::string::npos);
+    chute.replace(chute.find(coarse), coarse.size(), "cell_size = 0.25");
+    const auto base = dir.write("base.toml", chute);
+    const std::string out = dir.file("out");
+    test::ChildRun batch(dir,
+                         {"batch", "--quiet", "--scenario", base, "--sweep", "delta=22,24,26",
+                          "--parallel", "1", "--out", out},
+                         "batch");
+    // The second scenario is in its time loop once its results.h5 is open.
+    ASSERT_TRUE(batch.wait_for_file(out + "/delta=24/results.h5.part", std::chrono::seconds(120)))
+        << batch.stderr_text();
+    batch.signal(SIGINT);
+    const int status = batch.wait();
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 6) << batch.stderr_text();
+    EXPECT_EQ(test::read_json(out + "/delta=24/summary.json")["end_reason"], "interrupted");
+    EXPECT_FALSE(fs::exists(out + "/delta=26"));
+
+    const auto csv = test::read_csv(out + "/comparison.csv");
+    ASSERT_EQ(csv.size(), 4u);
+    const std::size_t end = column(csv[0], "end_reason");
+    EXPECT_EQ(csv[1][0], "delta=22");
+    EXPECT_EQ(csv[1][end], test::read_json(out + "/delta=22/summary.json")["end_reason"]);
+    EXPECT_EQ(csv[2][0], "delta=24");
+    EXPECT_EQ(csv[2][end], "interrupted");
+    EXPECT_EQ(csv[2][column(csv[0], "runout_m")], "") << "partial results are not compared";
+    EXPECT_EQ(csv[3][0], "delta=26");
+    EXPECT_EQ(csv[3][end], "not run");
+    for (const auto& row : csv) EXPECT_EQ(row.size(), csv[0].size());
+
+    const std::string md = test::read_text(out + "/comparison.md");
+    EXPECT_EQ(md.find("failed"), std::string::npos) << md;
+    EXPECT_NE(md.find("| [delta=24](delta=24/report.md) | 24 | | | | | interrupted |"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| delta=26 | 26 | | | | | not run |"), std::string::npos) << md;
+    EXPECT_TRUE(fs::exists(out + "/delta=24/report.md"));
+    EXPECT_NE(test::read_text(out + "/report.html").find("data-value=\"not run\""),
+              std::string::npos);
+
+    const auto manifest = test::read_json(out + "/manifest.json");
+    std::map<std::string, nlohmann::json> entries;
+    for (const auto& e : manifest["scenarios"]) entries[e["id"].get<std::string>()] = e;
+    EXPECT_TRUE(entries["delta=22"]["complete"].get<bool>());
+    EXPECT_FALSE(entries["delta=24"]["complete"].get<bool>());
+    EXPECT_EQ(entries["delta=24"].value("interrupted", false), true);
+    EXPECT_FALSE(entries["delta=26"]["complete"].get<bool>());
+    EXPECT_FALSE(entries["delta=26"].contains("interrupted"));
 }
 
 TEST(Batch, RefusesTheFolderOfASingleRun) {

@@ -511,10 +511,44 @@ TEST(HtmlBatchReport, TableEqualsComparisonCsvAndTheFileIsSelfContained) {
     std::ofstream(out + "/calibration.json")
         << R"({"observed": "deposit.gpkg", "ranking": [{"id": "delta=20", "score": 0.75},)"
         << R"( {"id": "delta=15", "score": 0.5}]})";
-    write_batch_report_html(out, base);
+    write_batch_report_html(out, base, {"comparison.csv", "calibration.json"});
     const std::string with = read_text(out + "/report.html");
     EXPECT_NE(with.find("<td>deposit.gpkg</td>"), std::string::npos);
     EXPECT_NE(with.find("<tr><td>delta=20</td><td>0.75</td></tr>"), std::string::npos);
+}
+
+// A batch rerun into the folder of another with --overwrite: the plots, calibration and
+// frequency map the first batch left there are not this batch's, and its report must not
+// show them (it showed the first batch's calibration and delta plots beside its own).
+TEST(HtmlBatchReport, ShowsOnlyWhatThisBatchWrote) {
+    ScratchDir dir("html-batch-stale");
+    const std::string base = dir.write("base.toml", test::kSmallChute);
+    const std::string out = dir.file("out");
+    const std::string batch = "batch --quiet --scenario " + shell_quoted(base) + " --parallel 1 ";
+    auto r = run_binary(dir, batch + "--sweep delta=15,20 --out " + shell_quoted(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_TRUE(fs::exists(out + "/runout_vs_delta_deg.svg"));
+    // As a batch with --observed leaves it.
+    std::ofstream(out + "/calibration.json")
+        << R"({"observed": "deposit.gpkg", "ranking": [{"id": "delta=20", "score": 0.75}]})";
+
+    r = run_binary(dir, batch + "--sweep phi=30,35 --overwrite --out " + shell_quoted(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::string html = read_text(out + "/report.html");
+    EXPECT_NE(html.find("vs phi_deg"), std::string::npos) << "this batch's plots";
+    EXPECT_EQ(html.find("vs delta_deg"), std::string::npos) << "the first batch's plots";
+    EXPECT_EQ(html.find("Calibration against the observation"), std::string::npos);
+    EXPECT_EQ(html.find("deposit.gpkg"), std::string::npos);
+    EXPECT_NE(html.find("id=\"frequency\""), std::string::npos);
+
+    // A batch that wrote no plot and no frequency map (no scenario complete) shows none,
+    // though DIR holds both.
+    write_batch_report_html(out, base, {"comparison.csv", "comparison.md"});
+    html = read_text(out + "/report.html");
+    EXPECT_EQ(html.find("id=\"plots\""), std::string::npos);
+    EXPECT_EQ(html.find("id=\"frequency\""), std::string::npos);
+    EXPECT_EQ(html.find("id=\"calibration\""), std::string::npos);
+    EXPECT_NE(html.find("id=\"comparison\""), std::string::npos);
 }
 
 }  // namespace

@@ -110,5 +110,40 @@ TEST(Points, ProblemsNameTheLineOrPoint) {
                               {"points_crs"});
 }
 
+// Each name becomes a group of monitoring.h5: names HDF5 cannot take are refused when the
+// points are read, not after the run; commas and quotes are fine (monitoring.csv quotes
+// them).
+TEST(Points, NamesThatCannotNameAnHdf5GroupAreRefusedWhenRead) {
+    TempDir tmp;
+    const GeoGrid geo = utm_grid();
+    std::ofstream(tmp.file("slash.csv")) << "name,x,y\na,600100,5200100\nLift A/B,600200,5200100\n";
+    expect_error<InputError>([&] { read_points(tmp.file("slash.csv"), "", geo); },
+                             {"slash.csv", "line 3", "'Lift A/B'", "without '/'"});
+    std::ofstream(tmp.file("dot.csv")) << "name,x,y\n.,600100,5200100\n";
+    expect_error<InputError>([&] { read_points(tmp.file("dot.csv"), "", geo); },
+                             {"dot.csv", "line 2", "'.'", "other than '.'"});
+    std::ofstream(tmp.file("p.geojson")) << R"({"type": "FeatureCollection",
+               "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+               "features": [
+                 {"type": "Feature", "properties": {"name": "Haus Moser, Nord"},
+                  "geometry": {"type": "Point", "coordinates": [600100, 5200100]}},
+                 {"type": "Feature", "properties": {"name": "Rinne \"Ost\""},
+                  "geometry": {"type": "Point", "coordinates": [600200, 5200100]}},
+                 {"type": "Feature", "properties": {"name": ".."},
+                  "geometry": {"type": "Point", "coordinates": [600300, 5200100]}}]})";
+    const auto p = read_points(tmp.file("p.geojson"), "", geo);
+    ASSERT_EQ(p.size(), 3u);
+    EXPECT_EQ(p[0].name, "Haus Moser, Nord");
+    EXPECT_EQ(p[1].name, "Rinne \"Ost\"");
+    EXPECT_EQ(p[2].name, "..");  // a group name like any other in HDF5
+    std::ofstream(tmp.file("slash.geojson")) << R"({"type": "FeatureCollection",
+               "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+               "features": [
+                 {"type": "Feature", "properties": {"name": "Lift A/B"},
+                  "geometry": {"type": "Point", "coordinates": [600100, 5200100]}}]})";
+    expect_error<InputError>([&] { read_points(tmp.file("slash.geojson"), "", geo); },
+                             {"slash.geojson", "feature 0", "'Lift A/B'", "monitoring.h5"});
+}
+
 }  // namespace
 }  // namespace avalanche::gis

@@ -22,7 +22,8 @@ struct ManifestEntry {
     std::string config_hash_without_paths;
     std::string source_hash;  // "" in manifests written before it was recorded
     bool complete = false;
-    std::string error;  // why the last attempt failed, "" if it did not
+    std::string error;         // why the last attempt failed, "" if it did not
+    bool interrupted = false;  // the last attempt was stopped (Ctrl-C, SIGTERM) before its end
 };
 using Manifest = std::map<std::string, ManifestEntry>;  // by scenario id (sorted)
 

@@ -4,6 +4,7 @@
 // inline SVG, CSS inline, no script and no external URL, so it opens offline and prints.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "avalanche/app/products.hpp"
 
@@ -16,10 +17,12 @@ std::string write_report_html(const std::string& dir, const ProductInputs& in,
                               const nlohmann::json& summary);
 
 // DIR/report.html of a batch, from the files the batch wrote into DIR: comparison.csv,
-// the *_vs_*.svg plots, impact_frequency.tif (drawn into impact_frequency.png over the
-// hillshade of the first scenario's dem.tif) and calibration.json when present. Returns the
-// file names written.
+// and of `batch_files` (the names this batch wrote, e.g. "runout_vs_delta_deg.svg") the
+// *_vs_*.svg plots, impact_frequency.tif (drawn into impact_frequency.png over the
+// hillshade of the first scenario's dem.tif) and calibration.json. Files of an earlier
+// batch in DIR that are not listed are not shown. Returns the file names written.
 std::vector<std::string> write_batch_report_html(const std::string& dir,
-                                                 const std::string& base_scenario);
+                                                 const std::string& base_scenario,
+                                                 const std::vector<std::string>& batch_files);
 
 }  // namespace avalanche

@@ -8,7 +8,8 @@
 
 namespace avalanche {
 
-// Columns: point,x,y,t_s,h_m,u_ms,v_ms,speed_ms,pressure_kpa (h bed-normal).
+// Columns: point,x,y,t_s,h_m,u_ms,v_ms,speed_ms,pressure_kpa (h bed-normal); the point's
+// name quoted per RFC 4180 when it holds ',', '"', CR or LF (csv_text.hpp).
 void write_monitoring_csv(const std::string& path, const MonitoringPoints& points);
 
 // /<point name>/{t, h, u, v, speed, pressure} with attributes x, y, units.
